@@ -1,0 +1,27 @@
+// 8-bit RGB images and how floating-point radiance becomes one.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "rt/math.h"
+
+namespace rt {
+
+// spec 2.7 says "clamp, then round"; the reference images truncate
+// (reference-conventions.md, "Output"), so truncation is the default.
+enum class Rounding { Truncate, Nearest };
+
+struct Image {
+    int width = 0, height = 0;
+    std::vector<uint8_t> rgb;  // row-major, top row first, 3 bytes per pixel
+};
+
+// Clamps each channel to [0, 255] and quantises it; NaN becomes 0.
+uint8_t quantize(Real value, Rounding rounding);
+
+// Writes a PNG atomically: to a temporary name beside `path`, then renamed over it,
+// so a failure never leaves a half-written image. Throws rt::InputError naming `path`.
+void write_png(const Image& image, const std::string& path);
+
+}  // namespace rt

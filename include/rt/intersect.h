@@ -1,0 +1,110 @@
+// Ray/primitive intersection and the two scene queries every ray uses:
+// closest hit (camera, reflection, refraction rays) and any hit (shadow rays).
+#pragma once
+#include <cmath>
+#include <cstdint>
+
+#include "rt/math.h"
+
+namespace rt {
+
+struct Scene;
+
+// Per-ray constants of the watertight triangle test (Woop, Benthin, Wald 2013):
+// the ray is sheared so that it runs along +z, then edge functions are evaluated
+// in 2D. Rays through a shared edge or vertex hit at least one of its triangles.
+struct RayPre {
+    Ray ray;
+    Vec3 inv_dir;
+    int kx, ky, kz;
+    Real sx, sy, sz;
+};
+
+inline RayPre prepare(const Ray& r) {
+    RayPre p;
+    p.ray = r;
+    p.inv_dir = {Real(1) / r.dir.x, Real(1) / r.dir.y, Real(1) / r.dir.z};
+    Real ax = std::fabs(r.dir.x), ay = std::fabs(r.dir.y), az = std::fabs(r.dir.z);
+    p.kz = (ax > ay) ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
+    p.kx = (p.kz + 1) % 3;
+    p.ky = (p.kx + 1) % 3;
+    if (r.dir[p.kz] < 0) std::swap(p.kx, p.ky);  // keep the winding of the projected triangle
+    p.sx = r.dir[p.kx] / r.dir[p.kz];
+    p.sy = r.dir[p.ky] / r.dir[p.kz];
+    p.sz = Real(1) / r.dir[p.kz];
+    return p;
+}
+
+// Watertight ray/triangle test. On a hit in (tmin, tmax) returns true with the
+// distance t and the barycentric weights (w0, w1, w2) of a, b, c.
+inline bool intersect_triangle(const RayPre& p, Vec3 a, Vec3 b, Vec3 c, Real tmin, Real tmax,
+                               Real& t, Real w[3]) {
+    const Vec3 A = a - p.ray.org, B = b - p.ray.org, C = c - p.ray.org;
+    const Real ax = A[p.kx] - p.sx * A[p.kz], ay = A[p.ky] - p.sy * A[p.kz];
+    const Real bx = B[p.kx] - p.sx * B[p.kz], by = B[p.ky] - p.sy * B[p.kz];
+    const Real cx = C[p.kx] - p.sx * C[p.kz], cy = C[p.ky] - p.sy * C[p.kz];
+    const Real u = cx * by - cy * bx;  // weight of a
+    const Real v = ax * cy - ay * cx;  // weight of b
+    const Real ww = bx * ay - by * ax;  // weight of c
+    if ((u < 0 || v < 0 || ww < 0) && (u > 0 || v > 0 || ww > 0)) return false;
+    const Real det = u + v + ww;
+    if (det == 0) return false;
+    const Real tz = p.sz * (u * A[p.kz] + v * B[p.kz] + ww * C[p.kz]);
+    // t = tz / det must lie in (tmin, tmax); compare without dividing first.
+    if (det > 0 ? (tz <= tmin * det || tz >= tmax * det) : (tz >= tmin * det || tz <= tmax * det))
+        return false;
+    const Real inv = Real(1) / det;
+    t = tz * inv;
+    w[0] = u * inv;
+    w[1] = v * inv;
+    w[2] = ww * inv;
+    return true;
+}
+
+// Nearest intersection of a unit-direction ray with a sphere in (tmin, tmax).
+// The discriminant is computed as r^2 - |oc - (oc.d) d|^2, which stays accurate
+// for small spheres far away (Haines et al., Ray Tracing Gems ch. 7).
+inline bool intersect_sphere(const Ray& r, Vec3 centre, Real radius, Real tmin, Real tmax, Real& t) {
+    const Vec3 oc = r.org - centre;
+    const Real b = dot(oc, r.dir);
+    const Vec3 perp = oc - r.dir * b;
+    const Real disc = radius * radius - dot(perp, perp);
+    if (disc < 0) return false;
+    const Real c = dot(oc, oc) - radius * radius;
+    // Stable roots: q = -b - sign(b) sqrt(disc); t0 = c / q, t1 = q.
+    const Real q = -b - std::copysign(std::sqrt(disc), b);
+    Real t0 = q, t1 = (q != 0) ? c / q : q;
+    if (t0 > t1) std::swap(t0, t1);
+    if (t0 > tmin && t0 < tmax) { t = t0; return true; }
+    if (t1 > tmin && t1 < tmax) { t = t1; return true; }
+    return false;
+}
+
+// Infinite plane through `point` with unit `normal`; both sides are hit.
+inline bool intersect_plane(const Ray& r, Vec3 point, Vec3 normal, Real tmin, Real tmax, Real& t) {
+    const Real denom = dot(r.dir, normal);
+    if (denom == 0) return false;
+    const Real tt = dot(point - r.org, normal) / denom;
+    if (!(tt > tmin && tt < tmax)) return false;
+    t = tt;
+    return true;
+}
+
+enum class HitKind : uint32_t { Triangle, Sphere, Plane };
+
+struct Hit {
+    Real t = HUGE_VAL;
+    HitKind kind = HitKind::Triangle;
+    uint32_t index = 0;  // into Scene::triangles, spheres or planes
+    Real w[3] = {0, 0, 0};  // barycentric weights (triangles)
+};
+
+// Closest hit in (tmin, tmax). With `cull`, triangles whose geometric normal
+// points along the ray are ignored (spec 2.9). Ties in t go to the lower
+// primitive id, so the answer does not depend on the BVH layout.
+bool closest_hit(const Scene& scene, const Ray& ray, Real tmin, Real tmax, bool cull, Hit& hit);
+
+// True when anything lies in (tmin, tmax); never culls (spec 2.9: shadow rays).
+bool any_hit(const Scene& scene, const Ray& ray, Real tmin, Real tmax);
+
+}  // namespace rt

@@ -1,0 +1,74 @@
+// Render data: flat arrays built once from a SceneDesc. Constructors never see JSON.
+// Triangles share one vertex array; spheres and triangles sit under one BVH,
+// infinite planes are tested separately (they have no finite bounds).
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "rt/bvh.h"
+#include "rt/camera.h"
+#include "rt/scene_desc.h"
+
+namespace rt {
+
+struct Material {
+    MaterialType type = MaterialType::Plain;
+    Vec3 ambient, diffuse, specular;
+    Real phong_exponent = 1;
+    Vec3 mirror;
+    Real refraction_index = 1, absorption_index = 0;
+    Vec3 absorption_coefficient;
+};
+
+struct Triangle {
+    uint32_t v[3];      // into Scene::positions (and Scene::vertex_normals when smooth)
+    uint32_t material;
+    uint32_t smooth;    // 1: interpolate vertex normals; 0: flat
+};
+
+struct Sphere {
+    Vec3 center;
+    Real radius;
+    uint32_t material;
+};
+
+struct Plane {
+    Vec3 point, normal;  // normal has unit length
+    uint32_t material;
+};
+
+struct PointLight {
+    Vec3 position, intensity;
+};
+
+struct Scene {
+    std::string path;
+    Vec3 background, ambient_light;
+    Real shadow_ray_epsilon = Real(1e-3);
+    int max_recursion_depth = 6;
+
+    std::vector<Camera> cameras;
+    std::vector<PointLight> lights;
+    std::vector<Material> materials;
+
+    std::vector<Vec3> positions;
+    std::vector<Vec3> vertex_normals;  // area-weighted, per mesh; unit length or zero
+    std::vector<Triangle> triangles;
+    std::vector<Vec3> face_normals;    // unit geometric normal per triangle, CCW front
+    std::vector<Sphere> spheres;
+    std::vector<Plane> planes;
+
+    // Over primitive ids: [0, triangles.size()) are triangles, the rest spheres.
+    Bvh bvh;
+    size_t degenerate_triangles = 0;  // skipped at build time
+
+    Real build_seconds = 0;  // BVH build time, for the per-image report line
+};
+
+// Builds render data: copies vertices per mesh, computes face normals and
+// area-weighted vertex normals of smooth meshes, skips degenerate triangles
+// (spec 2.10) and builds the BVH.
+Scene build_scene(const SceneDesc& desc);
+
+}  // namespace rt

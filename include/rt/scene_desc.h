@@ -1,0 +1,77 @@
+// The scene as written in the file: plain typed structs, filled by the loader
+// (src/loader) and consumed by the scene builder (src/geometry/build_scene.cpp).
+// Ids in the file are 1-based; everything here is 0-based and has been
+// range-checked by the loader, so the builder never sees a bad index.
+#pragma once
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "rt/math.h"
+
+namespace rt {
+
+enum class MaterialType { Plain, Mirror, Conductor, Dielectric };
+
+struct MaterialDesc {
+    MaterialType type = MaterialType::Plain;
+    Vec3 ambient, diffuse, specular;
+    Real phong_exponent = 1;      // spec: PhongExponent; default 1 (reference-conventions.md)
+    Vec3 mirror;                  // MirrorReflectance; ignored for Plain materials
+    Real refraction_index = 1;    // conductors and dielectrics
+    Real absorption_index = 0;    // conductors: imaginary part k of the complex index
+    Vec3 absorption_coefficient;  // dielectrics: Beer's law c, per unit distance
+};
+
+struct CameraDesc {
+    Vec3 position, gaze, up;   // gaze is a direction (lookAt cameras: GazePoint - Position)
+    Real left = -1, right = 1, bottom = -1, top = 1;  // near plane extents
+    Real near_distance = 1;
+    int width = 0, height = 0;
+    std::string image_name;
+};
+
+struct PointLightDesc {
+    Vec3 position, intensity;
+};
+
+enum class ShadingMode { Flat, Smooth };
+
+struct MeshDesc {
+    uint32_t material = 0;
+    ShadingMode shading = ShadingMode::Flat;
+    // Vertex positions used by this mesh and triangles indexing them (0-based, local).
+    // Inline meshes copy the VertexData entries they use, so smooth normals are per mesh.
+    std::vector<Vec3> positions;
+    std::vector<uint32_t> indices;  // 3 per triangle
+    std::string source;             // where the faces came from, for messages
+};
+
+struct SphereDesc {
+    uint32_t material = 0;
+    Vec3 center;
+    Real radius = 1;
+};
+
+struct PlaneDesc {
+    uint32_t material = 0;
+    Vec3 point, normal;
+};
+
+struct SceneDesc {
+    std::string path;  // the scene file, for messages
+    Vec3 background;   // BackgroundColor, default 0 0 0
+    Real shadow_ray_epsilon = Real(1e-3);
+    Real intersection_test_epsilon = Real(1e-6);
+    int max_recursion_depth = 6;
+    Vec3 ambient_light;
+    std::vector<CameraDesc> cameras;
+    std::vector<PointLightDesc> point_lights;
+    std::vector<MaterialDesc> materials;
+    std::vector<MeshDesc> meshes;  // Objects/Triangle entries become one-triangle flat meshes
+    std::vector<SphereDesc> spheres;
+    std::vector<PlaneDesc> planes;
+    std::vector<std::string> warnings;  // unknown keys, skipped degenerate triangles, ...
+};
+
+}  // namespace rt

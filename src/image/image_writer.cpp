@@ -1,0 +1,54 @@
+// PNG output through stb_image_write (Debian libstb-dev), written atomically.
+#include <stb/stb_image_write.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <string>
+#include <unistd.h>
+
+#include "rt/error.h"
+#include "rt/image.h"
+
+namespace rt {
+
+uint8_t quantize(Real value, Rounding rounding) {
+    if (!(value > 0)) return 0;  // negative and NaN
+    if (value >= 255) return 255;
+    return static_cast<uint8_t>(rounding == Rounding::Nearest ? std::floor(value + Real(0.5)) : value);
+}
+
+namespace {
+void append_bytes(void* context, void* data, int size) {
+    auto* out = static_cast<std::string*>(context);
+    out->append(static_cast<const char*>(data), static_cast<size_t>(size));
+}
+}  // namespace
+
+void write_png(const Image& image, const std::string& path) {
+    std::string bytes;
+    if (!stbi_write_png_to_func(append_bytes, &bytes, image.width, image.height, 3, image.rgb.data(),
+                                image.width * 3))
+        throw InputError(path + ": cannot encode PNG");
+
+    // Write beside the target and rename over it, so that readers never see a
+    // partial file and a failure leaves nothing behind.
+    const std::string tmp = path + ".tmp" + std::to_string(::getpid());
+    FILE* f = std::fopen(tmp.c_str(), "wb");
+    if (!f) throw InputError(path + ": cannot write: " + std::strerror(errno));
+    const bool ok = std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size();
+    const int write_errno = errno;
+    if (std::fclose(f) != 0 || !ok) {
+        const int e = ok ? errno : write_errno;
+        std::remove(tmp.c_str());
+        throw InputError(path + ": cannot write: " + std::strerror(e));
+    }
+    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+        const int e = errno;
+        std::remove(tmp.c_str());
+        throw InputError(path + ": cannot write: " + std::strerror(e));
+    }
+}
+
+}  // namespace rt

@@ -1,0 +1,519 @@
+// JSON scene loader: text -> SceneDesc. Every value in the course's files is a
+// string ("1 2 3"); numbers are also accepted where one number is expected.
+// Every reference (material ids, vertex ids) is resolved and range-checked
+// here, once; errors name the file and the JSON pointer of the offending value.
+#include <nlohmann/json.hpp>
+
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <unordered_map>
+
+#include "rt/error.h"
+#include "rt/loader.h"
+#include "rt/ply.h"
+
+namespace rt {
+namespace {
+
+using nlohmann::json;
+
+// Largest image we agree to allocate (refused before allocating).
+constexpr long long kMaxPixels = 1LL << 28;
+constexpr int kMaxRecursionDepthLimit = 10000;
+
+const char* type_name(const json& v) {
+    switch (v.type()) {
+        case json::value_t::null: return "null";
+        case json::value_t::object: return "an object";
+        case json::value_t::array: return "an array";
+        case json::value_t::string: return "a string";
+        case json::value_t::boolean: return "a boolean";
+        case json::value_t::discarded: return "nothing";
+        default: return "a number";
+    }
+}
+
+std::string dirname_of(const std::string& path) {
+    const size_t slash = path.find_last_of('/');
+    return slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
+}
+
+class Loader {
+public:
+    Loader(const std::string& path, SceneDesc& out) : file_(path), dir_(dirname_of(path)), out_(out) {}
+
+    void load(const json& root) {
+        if (!root.is_object()) fail("", std::string("expected a JSON object at the top, got ") + type_name(root));
+        check_keys(root, "", "", {"Scene"});
+        const json& scene = require(root, "", "Scene");
+        const std::string sp = "/Scene";
+        expect_object(scene, sp);
+        check_keys(scene, sp, sp,
+                   {"BackgroundColor", "ShadowRayEpsilon", "IntersectionTestEpsilon", "MaxRecursionDepth", "Cameras",
+                    "Lights", "Materials", "VertexData", "Objects"});
+
+        if (const json* v = find(scene, "BackgroundColor")) out_.background = color(*v, sp + "/BackgroundColor");
+        if (const json* v = find(scene, "ShadowRayEpsilon"))
+            out_.shadow_ray_epsilon = non_negative(*v, sp + "/ShadowRayEpsilon");
+        if (const json* v = find(scene, "IntersectionTestEpsilon"))
+            out_.intersection_test_epsilon = non_negative(*v, sp + "/IntersectionTestEpsilon");
+        if (const json* v = find(scene, "MaxRecursionDepth")) {
+            const long long d = integer(*v, sp + "/MaxRecursionDepth");
+            if (d < 0 || d > kMaxRecursionDepthLimit)
+                fail(sp + "/MaxRecursionDepth", "must be between 0 and " + std::to_string(kMaxRecursionDepthLimit));
+            out_.max_recursion_depth = static_cast<int>(d);
+        }
+
+        load_vertices(scene, sp);
+        load_materials(scene, sp);
+        load_cameras(scene, sp);
+        load_lights(scene, sp);
+        load_objects(scene, sp);
+
+        for (const auto& [key, count] : unknown_)
+            out_.warnings.push_back(file_ + ": " + key + ": unknown key ignored" +
+                                    (count > 1 ? " (" + std::to_string(count) + " times)" : ""));
+    }
+
+private:
+    std::string file_, dir_;
+    SceneDesc& out_;
+    std::vector<Vec3> vertices_;                      // VertexData, 0-based
+    std::unordered_map<std::string, uint32_t> material_ids_;  // _id -> index
+    std::map<std::string, int> unknown_;              // generic key path -> occurrences
+
+    [[noreturn]] void fail(const std::string& where, const std::string& what) const {
+        throw InputError(file_ + ": " + (where.empty() ? "/" : where) + ": " + what);
+    }
+
+    static const json* find(const json& obj, const char* key) {
+        auto it = obj.find(key);
+        return it == obj.end() ? nullptr : &*it;
+    }
+
+    const json& require(const json& obj, const std::string& path, const char* key) const {
+        const json* v = find(obj, key);
+        if (!v) fail(path + "/" + key, "required key is missing");
+        return *v;
+    }
+
+    void expect_object(const json& v, const std::string& path) const {
+        if (!v.is_object()) fail(path, std::string("expected an object, got ") + type_name(v));
+    }
+
+    // Records keys the renderer does not use; `generic` is the path without array indices.
+    void check_keys(const json& obj, const std::string& /*path*/, const std::string& generic,
+                    std::initializer_list<const char*> known) {
+        for (auto it = obj.begin(); it != obj.end(); ++it) {
+            bool ok = false;
+            for (const char* k : known) ok = ok || it.key() == k;
+            if (!ok) ++unknown_[generic + "/" + it.key()];
+        }
+    }
+
+    // Calls f(element, path) for a key holding one object or an array of them.
+    template <class F>
+    void for_each_item(const json& parent, const std::string& parent_path, const char* key, F f) {
+        const json* v = find(parent, key);
+        const std::string path = parent_path + "/" + key;
+        if (!v || v->is_null()) return;
+        if (v->is_object()) {
+            f(*v, path);
+        } else if (v->is_array()) {
+            for (size_t i = 0; i < v->size(); ++i) {
+                const json& e = (*v)[i];
+                const std::string ep = path + "/" + std::to_string(i);
+                expect_object(e, ep);
+                f(e, ep);
+            }
+        } else {
+            fail(path, std::string("expected an object or an array of objects, got ") + type_name(*v));
+        }
+    }
+
+    // --- values ---------------------------------------------------------------
+
+    const std::string& text(const json& v, const std::string& path) const {
+        if (!v.is_string()) fail(path, std::string("expected a string, got ") + type_name(v));
+        return v.get_ref<const std::string&>();
+    }
+
+    // Whitespace-separated finite numbers.
+    std::vector<double> numbers(const json& v, const std::string& path) const {
+        std::vector<double> out;
+        if (v.is_number()) {
+            out.push_back(v.get<double>());
+        } else {
+            const std::string& s = text(v, path);
+            const char* p = s.data();
+            const char* end = p + s.size();
+            while (true) {
+                while (p < end && std::isspace(static_cast<unsigned char>(*p))) ++p;
+                if (p == end) break;
+                const char* tok = p;
+                if (*p == '+') ++p;  // from_chars rejects a leading '+'
+                double d;
+                auto r = std::from_chars(p, end, d);
+                if (r.ec == std::errc::result_out_of_range) {
+                    fail(path, "number out of range: '" + std::string(tok, r.ptr) + "'");
+                }
+                if (r.ec != std::errc() || (r.ptr < end && !std::isspace(static_cast<unsigned char>(*r.ptr)))) {
+                    const char* e = tok;
+                    while (e < end && !std::isspace(static_cast<unsigned char>(*e))) ++e;
+                    fail(path, "not a number: '" + std::string(tok, e) + "'");
+                }
+                out.push_back(d);
+                p = r.ptr;
+            }
+        }
+        for (double d : out)
+            if (!std::isfinite(d)) fail(path, "not a finite number");
+        return out;
+    }
+
+    std::vector<double> exactly(const json& v, const std::string& path, size_t n) const {
+        std::vector<double> xs = numbers(v, path);
+        if (xs.size() != n)
+            fail(path, "expected " + std::to_string(n) + " number" + (n > 1 ? "s" : "") + ", got " +
+                           std::to_string(xs.size()));
+        return xs;
+    }
+
+    Real real(const json& v, const std::string& path) const { return static_cast<Real>(exactly(v, path, 1)[0]); }
+
+    Real positive(const json& v, const std::string& path) const {
+        const Real r = real(v, path);
+        if (!(r > 0)) fail(path, "must be greater than 0");
+        return r;
+    }
+
+    Real non_negative(const json& v, const std::string& path) const {
+        const Real r = real(v, path);
+        if (r < 0) fail(path, "must not be negative");
+        return r;
+    }
+
+    long long integer(const json& v, const std::string& path) const {
+        const double d = exactly(v, path, 1)[0];
+        if (d != std::floor(d) || std::fabs(d) > 9e15) fail(path, "expected an integer");
+        return static_cast<long long>(d);
+    }
+
+    Vec3 vec3(const json& v, const std::string& path) const {
+        const std::vector<double> xs = exactly(v, path, 3);
+        return {static_cast<Real>(xs[0]), static_cast<Real>(xs[1]), static_cast<Real>(xs[2])};
+    }
+
+    Vec3 nonzero_vec3(const json& v, const std::string& path) const {
+        const Vec3 x = vec3(v, path);
+        if (!(length(x) > 0)) fail(path, "must not be the zero vector");
+        return x;
+    }
+
+    // Colours and reflectances: three numbers, none negative (spec 2.7).
+    Vec3 color(const json& v, const std::string& path) const {
+        const Vec3 c = vec3(v, path);
+        if (c.x < 0 || c.y < 0 || c.z < 0) fail(path, "must not be negative");
+        return c;
+    }
+
+    // A 1-based id into a list of `count` items; returns the 0-based index.
+    uint32_t vertex_id(double d, const std::string& path) const {
+        if (d != std::floor(d)) fail(path, "vertex id must be an integer");
+        if (d < 1 || d > static_cast<double>(vertices_.size()))
+            fail(path, "vertex id " + format_id(d) + " out of range (VertexData has " +
+                           std::to_string(vertices_.size()) + " vertices)");
+        return static_cast<uint32_t>(d) - 1;
+    }
+
+    static std::string format_id(double d) {
+        std::ostringstream s;
+        s << d;
+        return s.str();
+    }
+
+    uint32_t material_ref(const json& obj, const std::string& path) const {
+        const json& v = require(obj, path, "Material");
+        const std::string mp = path + "/Material";
+        const long long id = integer(v, mp);
+        auto it = material_ids_.find(std::to_string(id));
+        if (it == material_ids_.end())
+            fail(mp, "material id " + std::to_string(id) + " does not exist (" +
+                         std::to_string(material_ids_.size()) + " materials defined)");
+        return it->second;
+    }
+
+    // --- sections -------------------------------------------------------------
+
+    void load_vertices(const json& scene, const std::string& sp) {
+        const json* v = find(scene, "VertexData");
+        if (!v || v->is_null()) return;
+        std::string path = sp + "/VertexData";
+        const json* data = v;
+        if (v->is_object()) {
+            check_keys(*v, path, path, {"_data", "_type"});
+            if (const json* t = find(*v, "_type"); t && text(*t, path + "/_type") != "xyz")
+                fail(path + "/_type", "unsupported vertex data type '" + t->get<std::string>() + "'");
+            data = &require(*v, path, "_data");
+            path += "/_data";
+        }
+        const std::vector<double> xs = numbers(*data, path);
+        if (xs.size() % 3 != 0)
+            fail(path, "expected x y z triples, got " + std::to_string(xs.size()) + " numbers");
+        vertices_.resize(xs.size() / 3);
+        for (size_t i = 0; i < vertices_.size(); ++i)
+            vertices_[i] = {static_cast<Real>(xs[3 * i]), static_cast<Real>(xs[3 * i + 1]),
+                            static_cast<Real>(xs[3 * i + 2])};
+    }
+
+    void load_materials(const json& scene, const std::string& sp) {
+        const json* ms = find(scene, "Materials");
+        const std::string path = sp + "/Materials";
+        if (!ms || ms->is_null()) return;
+        expect_object(*ms, path);
+        check_keys(*ms, path, path, {"Material"});
+        const std::string generic = path + "/Material";
+        for_each_item(*ms, path, "Material", [&](const json& m, const std::string& mp) {
+            check_keys(m, mp, generic,
+                       {"_id", "_type", "AmbientReflectance", "DiffuseReflectance", "SpecularReflectance",
+                        "PhongExponent", "MirrorReflectance", "RefractionIndex", "AbsorptionIndex",
+                        "AbsorptionCoefficient"});
+            MaterialDesc d;
+            if (const json* t = find(m, "_type")) {
+                const std::string& ty = text(*t, mp + "/_type");
+                if (ty == "mirror") d.type = MaterialType::Mirror;
+                else if (ty == "conductor") d.type = MaterialType::Conductor;
+                else if (ty == "dielectric") d.type = MaterialType::Dielectric;
+                else fail(mp + "/_type", "unknown material type '" + ty + "' (expected mirror, conductor or dielectric)");
+            }
+            d.ambient = color(require(m, mp, "AmbientReflectance"), mp + "/AmbientReflectance");
+            d.diffuse = color(require(m, mp, "DiffuseReflectance"), mp + "/DiffuseReflectance");
+            d.specular = color(require(m, mp, "SpecularReflectance"), mp + "/SpecularReflectance");
+            if (const json* v = find(m, "PhongExponent")) d.phong_exponent = non_negative(*v, mp + "/PhongExponent");
+            // Mirrors and conductors need MirrorReflectance; dielectrics default to 1 1 1
+            // (the course's 2021 cornellbox_recursive glass has none).
+            if (d.type == MaterialType::Mirror || d.type == MaterialType::Conductor)
+                d.mirror = color(require(m, mp, "MirrorReflectance"), mp + "/MirrorReflectance");
+            else if (const json* v = find(m, "MirrorReflectance"))
+                d.mirror = color(*v, mp + "/MirrorReflectance");
+            else
+                d.mirror = {1, 1, 1};
+            if (d.type == MaterialType::Conductor || d.type == MaterialType::Dielectric)
+                d.refraction_index = positive(require(m, mp, "RefractionIndex"), mp + "/RefractionIndex");
+            if (d.type == MaterialType::Conductor)
+                d.absorption_index = non_negative(require(m, mp, "AbsorptionIndex"), mp + "/AbsorptionIndex");
+            if (d.type == MaterialType::Dielectric) {
+                if (const json* v = find(m, "AbsorptionCoefficient"))
+                    d.absorption_coefficient = color(*v, mp + "/AbsorptionCoefficient");
+            }
+            std::string id = std::to_string(out_.materials.size() + 1);
+            if (const json* v = find(m, "_id")) id = std::to_string(integer(*v, mp + "/_id"));
+            if (!material_ids_.emplace(id, static_cast<uint32_t>(out_.materials.size())).second)
+                fail(mp + "/_id", "duplicate material id " + id);
+            out_.materials.push_back(d);
+        });
+    }
+
+    void load_cameras(const json& scene, const std::string& sp) {
+        const json& cs = require(scene, sp, "Cameras");
+        const std::string path = sp + "/Cameras";
+        expect_object(cs, path);
+        check_keys(cs, path, path, {"Camera"});
+        const std::string generic = path + "/Camera";
+        for_each_item(cs, path, "Camera", [&](const json& c, const std::string& cp) {
+            check_keys(c, cp, generic,
+                       {"_id", "_type", "Position", "Gaze", "GazePoint", "Up", "NearPlane", "NearDistance", "FovY",
+                        "ImageResolution", "ImageName"});
+            CameraDesc d;
+            bool look_at = false;
+            if (const json* t = find(c, "_type")) {
+                const std::string& ty = text(*t, cp + "/_type");
+                if (ty == "lookAt") look_at = true;
+                else if (ty != "simple") fail(cp + "/_type", "unknown camera type '" + ty + "' (expected lookAt)");
+            }
+            d.position = vec3(require(c, cp, "Position"), cp + "/Position");
+            d.near_distance = positive(require(c, cp, "NearDistance"), cp + "/NearDistance");
+            const std::vector<double> res = exactly(require(c, cp, "ImageResolution"), cp + "/ImageResolution", 2);
+            for (double r : res)
+                if (r != std::floor(r) || r < 1) fail(cp + "/ImageResolution", "width and height must be positive integers");
+            if (res[0] * res[1] > static_cast<double>(kMaxPixels))
+                fail(cp + "/ImageResolution", "image too large (" + format_id(res[0]) + " x " + format_id(res[1]) +
+                                                 ", at most " + std::to_string(kMaxPixels) + " pixels)");
+            d.width = static_cast<int>(res[0]);
+            d.height = static_cast<int>(res[1]);
+            d.image_name = text(require(c, cp, "ImageName"), cp + "/ImageName");
+            if (d.image_name.empty()) fail(cp + "/ImageName", "must not be empty");
+            std::string gaze_path;
+            if (look_at) {
+                // spec 3: a symmetric near plane around the gaze direction; FovY in
+                // degrees spans it vertically, the aspect ratio comes from the resolution.
+                gaze_path = cp + "/GazePoint";
+                d.gaze = vec3(require(c, cp, "GazePoint"), gaze_path) - d.position;
+                if (!(length(d.gaze) > 0)) fail(gaze_path, "GazePoint must differ from Position");
+                const Real fovy = real(require(c, cp, "FovY"), cp + "/FovY");
+                if (!(fovy > 0 && fovy < 180)) fail(cp + "/FovY", "must be between 0 and 180 degrees");
+                const Real pi = Real(3.14159265358979323846);
+                d.top = d.near_distance * std::tan(fovy * pi / 360);
+                d.bottom = -d.top;
+                d.right = d.top * Real(d.width) / Real(d.height);
+                d.left = -d.right;
+            } else {
+                gaze_path = cp + "/Gaze";
+                d.gaze = nonzero_vec3(require(c, cp, "Gaze"), gaze_path);
+                const std::vector<double> np = exactly(require(c, cp, "NearPlane"), cp + "/NearPlane", 4);
+                d.left = static_cast<Real>(np[0]);
+                d.right = static_cast<Real>(np[1]);
+                d.bottom = static_cast<Real>(np[2]);
+                d.top = static_cast<Real>(np[3]);
+                if (d.left == d.right || d.bottom == d.top)
+                    fail(cp + "/NearPlane", "left/right and bottom/top must differ");
+            }
+            d.up = nonzero_vec3(require(c, cp, "Up"), cp + "/Up");
+            const Vec3 side = cross(normalize(d.up), normalize(d.gaze));
+            if (!(length(side) > Real(1e-9))) fail(cp + "/Up", "Up is parallel to the gaze direction");
+            out_.cameras.push_back(d);
+        });
+        if (out_.cameras.empty()) fail(path, "no camera defined");
+    }
+
+    void load_lights(const json& scene, const std::string& sp) {
+        const json* ls = find(scene, "Lights");
+        const std::string path = sp + "/Lights";
+        if (!ls || ls->is_null()) return;
+        expect_object(*ls, path);
+        check_keys(*ls, path, path, {"AmbientLight", "PointLight"});
+        if (const json* a = find(*ls, "AmbientLight")) out_.ambient_light = color(*a, path + "/AmbientLight");
+        const std::string generic = path + "/PointLight";
+        for_each_item(*ls, path, "PointLight", [&](const json& l, const std::string& lp) {
+            check_keys(l, lp, generic, {"_id", "Position", "Intensity"});
+            out_.point_lights.push_back(
+                {vec3(require(l, lp, "Position"), lp + "/Position"), color(require(l, lp, "Intensity"), lp + "/Intensity")});
+        });
+    }
+
+    // Copies the VertexData entries a mesh uses into its own vertex list, so that
+    // smooth normals are computed per mesh (reference-conventions.md, "Smooth meshes").
+    void add_inline_faces(MeshDesc& mesh, const std::vector<double>& ids, const std::string& path) {
+        if (ids.size() % 3 != 0)
+            fail(path, "expected vertex ids in threes, got " + std::to_string(ids.size()) + " numbers");
+        std::unordered_map<uint32_t, uint32_t> local;
+        local.reserve(ids.size());
+        mesh.indices.reserve(ids.size());
+        for (double d : ids) {
+            const uint32_t g = vertex_id(d, path);
+            auto [it, inserted] = local.emplace(g, static_cast<uint32_t>(mesh.positions.size()));
+            if (inserted) mesh.positions.push_back(vertices_[g]);
+            mesh.indices.push_back(it->second);
+        }
+    }
+
+    void load_objects(const json& scene, const std::string& sp) {
+        const json* os = find(scene, "Objects");
+        const std::string path = sp + "/Objects";
+        if (!os || os->is_null()) return;
+        expect_object(*os, path);
+        check_keys(*os, path, path, {"Mesh", "Triangle", "Sphere", "Plane"});
+
+        for_each_item(*os, path, "Mesh", [&](const json& m, const std::string& mp) {
+            check_keys(m, mp, path + "/Mesh", {"_id", "_shadingMode", "Material", "Faces"});
+            MeshDesc mesh;
+            mesh.material = material_ref(m, mp);
+            if (const json* s = find(m, "_shadingMode")) {
+                const std::string& mode = text(*s, mp + "/_shadingMode");
+                if (mode == "smooth") mesh.shading = ShadingMode::Smooth;
+                else if (mode != "flat") fail(mp + "/_shadingMode", "unknown shading mode '" + mode + "' (expected flat or smooth)");
+            }
+            const std::string fp = mp + "/Faces";
+            const json& faces = require(m, mp, "Faces");
+            expect_object(faces, fp);
+            check_keys(faces, fp, path + "/Mesh/Faces", {"_data", "_type", "_plyFile"});
+            if (const json* t = find(faces, "_type"); t && text(*t, fp + "/_type") != "triangle")
+                fail(fp + "/_type", "unsupported face type '" + t->get<std::string>() + "' (expected triangle)");
+            const json* ply = find(faces, "_plyFile");
+            const json* data = find(faces, "_data");
+            if (ply && data) fail(fp, "has both _data and _plyFile");
+            if (ply) {
+                const std::string& rel = text(*ply, fp + "/_plyFile");
+                const std::string ply_path = (!rel.empty() && rel[0] == '/') ? rel : dir_ + rel;
+                PlyMesh pm;
+                try {
+                    pm = read_ply(ply_path);
+                } catch (const InputError& e) {
+                    fail(fp + "/_plyFile", e.what());
+                }
+                mesh.positions.resize(pm.positions.size() / 3);
+                for (size_t i = 0; i < mesh.positions.size(); ++i)
+                    mesh.positions[i] = {static_cast<Real>(pm.positions[3 * i]), static_cast<Real>(pm.positions[3 * i + 1]),
+                                         static_cast<Real>(pm.positions[3 * i + 2])};
+                mesh.indices = std::move(pm.indices);
+                mesh.source = ply_path;
+            } else if (data) {
+                add_inline_faces(mesh, numbers(*data, fp + "/_data"), fp + "/_data");
+                mesh.source = fp;
+            } else {
+                fail(fp, "needs _data or _plyFile");
+            }
+            out_.meshes.push_back(std::move(mesh));
+        });
+
+        for_each_item(*os, path, "Triangle", [&](const json& t, const std::string& tp) {
+            check_keys(t, tp, path + "/Triangle", {"_id", "Material", "Indices"});
+            MeshDesc mesh;
+            mesh.material = material_ref(t, tp);
+            add_inline_faces(mesh, exactly(require(t, tp, "Indices"), tp + "/Indices", 3), tp + "/Indices");
+            mesh.source = tp;
+            out_.meshes.push_back(std::move(mesh));
+        });
+
+        for_each_item(*os, path, "Sphere", [&](const json& s, const std::string& spp) {
+            check_keys(s, spp, path + "/Sphere", {"_id", "Material", "Center", "Radius"});
+            SphereDesc d;
+            d.material = material_ref(s, spp);
+            d.center = vertices_[vertex_id(exactly(require(s, spp, "Center"), spp + "/Center", 1)[0], spp + "/Center")];
+            d.radius = positive(require(s, spp, "Radius"), spp + "/Radius");
+            out_.spheres.push_back(d);
+        });
+
+        for_each_item(*os, path, "Plane", [&](const json& p, const std::string& pp) {
+            check_keys(p, pp, path + "/Plane", {"_id", "Material", "Point", "Normal"});
+            PlaneDesc d;
+            d.material = material_ref(p, pp);
+            d.point = vertices_[vertex_id(exactly(require(p, pp, "Point"), pp + "/Point", 1)[0], pp + "/Point")];
+            d.normal = nonzero_vec3(require(p, pp, "Normal"), pp + "/Normal");
+            out_.planes.push_back(d);
+        });
+    }
+};
+
+}  // namespace
+
+SceneDesc parse_scene(const std::string& json_text, const std::string& path) {
+    json root;
+    try {
+        root = json::parse(json_text);
+    } catch (const json::parse_error& e) {
+        // nlohmann's message reads "[json.exception.parse_error.101] parse error at line 3, column 5: ..."
+        std::string what = e.what();
+        const size_t at = what.find("parse error");
+        throw InputError(path + ": " + (at == std::string::npos ? what : what.substr(at)));
+    }
+    SceneDesc d;
+    d.path = path;
+    Loader(path, d).load(root);
+    return d;
+}
+
+SceneDesc load_scene(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw InputError(path + ": cannot open: " + std::strerror(errno));
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    if (in.bad()) throw InputError(path + ": cannot read: " + std::strerror(errno));
+    return parse_scene(ss.str(), path);
+}
+
+}  // namespace rt

@@ -1,0 +1,39 @@
+#include <algorithm>
+#include <cmath>
+
+#include "rt/shading.h"
+
+namespace rt {
+
+Real fresnel_dielectric(Real cos_i, Real eta_i, Real eta_t, Real* cos_t_out) {
+    cos_i = std::clamp(cos_i, Real(0), Real(1));
+    const Real sin_i2 = std::max(Real(0), 1 - cos_i * cos_i);
+    const Real ratio = eta_i / eta_t;
+    const Real sin_t2 = ratio * ratio * sin_i2;
+    if (sin_t2 >= 1) return 1;  // total internal reflection
+    const Real cos_t = std::sqrt(1 - sin_t2);
+    if (cos_t_out) *cos_t_out = cos_t;
+    const Real r_par = (eta_t * cos_i - eta_i * cos_t) / (eta_t * cos_i + eta_i * cos_t);
+    const Real r_perp = (eta_i * cos_i - eta_t * cos_t) / (eta_i * cos_i + eta_t * cos_t);
+    return (r_par * r_par + r_perp * r_perp) / 2;
+}
+
+// Exact Fresnel equations for a complex relative index (as in pbrt-v3's FrConductor):
+// a^2 + b^2 = sqrt((n^2 - k^2 - sin^2)^2 + 4 n^2 k^2).
+Real fresnel_conductor(Real cos_i, Real n, Real k) {
+    cos_i = std::clamp(cos_i, Real(0), Real(1));
+    const Real cos2 = cos_i * cos_i;
+    const Real sin2 = 1 - cos2;
+    const Real t0 = n * n - k * k - sin2;
+    const Real a2b2 = std::sqrt(t0 * t0 + 4 * n * n * k * k);
+    const Real a = std::sqrt(std::max(Real(0), (a2b2 + t0) / 2));
+    const Real t1 = a2b2 + cos2;
+    const Real t2 = 2 * cos_i * a;
+    const Real rs = (t1 - t2) / (t1 + t2);
+    const Real t3 = cos2 * a2b2 + sin2 * sin2;
+    const Real t4 = t2 * sin2;
+    const Real rp = rs * (t3 - t4) / (t3 + t4);
+    return (rs + rp) / 2;
+}
+
+}  // namespace rt

@@ -1,0 +1,130 @@
+// The recursive Whitted integrator (spec 2.6-2.8, section 3 "Material"), with the
+// conventions the course's reference images imply (reference-conventions.md).
+#include <cmath>
+
+#include "rt/intersect.h"
+#include "rt/scene.h"
+#include "rt/shading.h"
+
+namespace rt {
+namespace {
+
+constexpr int kNoMedium = -1;
+
+struct Integrator {
+    const Scene& s;
+    TraceOptions opt;
+
+    // Ambient + Blinn-Phong diffuse and specular from every unshadowed point light.
+    // `n` is the outward shading normal, also for surfaces hit from behind.
+    Vec3 local(const Material& m, Vec3 p, Vec3 n, Vec3 to_eye) const {
+        Vec3 c = m.ambient * s.ambient_light;
+        for (const PointLight& light : s.lights) {
+            const Vec3 to_light = light.position - p;
+            const Real d2 = dot(to_light, to_light);
+            const Vec3 l = to_light / std::sqrt(d2);
+            const Real ndotl = dot(n, l);
+            // Nothing to add: diffuse is max(0, n.l) and the specular term is
+            // dropped when n.l <= 0 (reference-conventions.md, "Shading").
+            if (!(ndotl > 0)) continue;
+            // Shadow ray from p + n * ShadowRayEpsilon (spec 3), never culled.
+            const Vec3 so = p + n * s.shadow_ray_epsilon;
+            const Vec3 so_to_light = light.position - so;
+            const Real dist = length(so_to_light);
+            if (any_hit(s, Ray{so, so_to_light / dist}, 0, dist)) continue;
+            const Vec3 e = light.intensity / d2;  // irradiance E = I / d^2 (spec 2.8)
+            const Vec3 h = normalize(l + to_eye);
+            const Real ndoth = std::fmax(Real(0), dot(n, h));
+            c += (m.diffuse * ndotl + m.specular * std::pow(ndoth, m.phong_exponent)) * e;
+        }
+        return c;
+    }
+
+    // `medium` is the dielectric material the ray travels inside, or kNoMedium.
+    Vec3 trace(const Ray& ray, int depth, int medium, bool primary) const {
+        Hit h;
+        // Culling applies to camera and reflection rays outside any medium,
+        // never inside a dielectric (reference-conventions.md, "Back-face culling").
+        const bool cull = opt.cull && medium == kNoMedium;
+        if (!closest_hit(s, ray, 0, HUGE_VAL, cull, h))
+            return primary ? s.background : Vec3{};  // spec 3, BackgroundColor
+
+        const Vec3 p = ray.org + ray.dir * h.t;
+        Vec3 ng, ns;
+        uint32_t mat_id;
+        switch (h.kind) {
+            case HitKind::Triangle: {
+                const Triangle& tri = s.triangles[h.index];
+                ng = s.face_normals[h.index];
+                ns = ng;
+                if (tri.smooth) {
+                    const Vec3 n = s.vertex_normals[tri.v[0]] * h.w[0] + s.vertex_normals[tri.v[1]] * h.w[1] +
+                                   s.vertex_normals[tri.v[2]] * h.w[2];
+                    const Real len = length(n);
+                    if (len > 0) ns = n / len;
+                }
+                mat_id = tri.material;
+                break;
+            }
+            case HitKind::Sphere: {
+                const Sphere& sp = s.spheres[h.index];
+                ng = ns = (p - sp.center) / sp.radius;
+                mat_id = sp.material;
+                break;
+            }
+            default: {
+                const Plane& pl = s.planes[h.index];
+                ng = ns = pl.normal;
+                mat_id = pl.material;
+                break;
+            }
+        }
+        const Material& m = s.materials[mat_id];
+        const bool front = dot(ray.dir, ng) < 0;
+        const Vec3 nf = front ? ns : -ns;  // shading normal facing the incoming ray
+
+        Vec3 color;
+        // Dielectrics are shaded only when hit from outside (reference-conventions.md).
+        if (m.type != MaterialType::Dielectric || front) color = local(m, p, ns, -ray.dir);
+
+        if (depth < s.max_recursion_depth && m.type != MaterialType::Plain) {
+            const Real eps = s.shadow_ray_epsilon;
+            const Real cos_i = -dot(ray.dir, nf);
+            const Vec3 refl_dir = normalize(ray.dir + nf * (2 * cos_i));
+            if (m.type == MaterialType::Mirror) {
+                color += m.mirror * trace(spawn_ray(p, nf, eps, refl_dir), depth + 1, medium, false);
+            } else if (m.type == MaterialType::Conductor) {
+                const Real fr = fresnel_conductor(cos_i, m.refraction_index, m.absorption_index);
+                if (fr > 0)
+                    color += m.mirror * fr * trace(spawn_ray(p, nf, eps, refl_dir), depth + 1, medium, false);
+            } else {
+                const int self = static_cast<int>(mat_id);
+                const Real eta_i = front ? Real(1) : m.refraction_index;
+                const Real eta_t = front ? m.refraction_index : Real(1);
+                Real cos_t = 0;
+                const Real fr = fresnel_dielectric(cos_i, eta_i, eta_t, &cos_t);
+                // The reflected ray stays on the incoming side; the refracted one crosses.
+                const int refl_medium = front ? medium : self;
+                const int refr_medium = front ? self : kNoMedium;
+                color += m.mirror * fr * trace(spawn_ray(p, nf, eps, refl_dir), depth + 1, refl_medium, false);
+                if (fr < 1) {
+                    const Real eta = eta_i / eta_t;
+                    const Vec3 t_dir = normalize(ray.dir * eta + nf * (eta * cos_i - cos_t));
+                    color += (1 - fr) * trace(spawn_ray(p, -nf, eps, t_dir), depth + 1, refr_medium, false);
+                }
+            }
+        }
+        // Beer's law on every segment travelled inside a dielectric, internally
+        // reflected ones included (reference-conventions.md, "Materials").
+        if (medium != kNoMedium) color = color * beer_attenuation(s.materials[medium].absorption_coefficient, h.t);
+        return color;
+    }
+};
+
+}  // namespace
+
+Vec3 trace_primary(const Scene& scene, const Ray& ray, const TraceOptions& options) {
+    return Integrator{scene, options}.trace(ray, 0, kNoMedium, true);
+}
+
+}  // namespace rt
