@@ -1,5 +1,6 @@
 // BVH traversal: near child first with a fixed stack; closest hit and any hit.
 #include <algorithm>
+#include <limits>
 
 #include "rt/intersect.h"
 #include "rt/scene.h"
@@ -9,13 +10,21 @@ namespace {
 
 constexpr int kStackSize = 128;  // the builder bounds depth to well below this
 
+// Widening of the exit distance that makes the slab test conservative despite
+// rounding in (bound - org) * inv_dir (pbrt-v3 section 3.9.2: 1 + 2 gamma(3)).
+constexpr Real kSlabWiden = 1 + 2 * (3 * std::numeric_limits<Real>::epsilon() / 2) /
+                                    (1 - 3 * std::numeric_limits<Real>::epsilon() / 2);
+
 // Slab test against a float box; returns the entry distance or HUGE_VAL on a miss.
+// Flat boxes (axis-aligned walls) make the slabs meet at one t, so without the
+// widening a ray along a wall's edge could miss both walls.
 inline Real box_entry(const BvhNode& n, const RayPre& p, Real tmin, Real tmax) {
     Real t0 = tmin, t1 = tmax;
     for (int a = 0; a < 3; ++a) {
         Real ta = (Real(n.lo[a]) - p.ray.org[a]) * p.inv_dir[a];
         Real tb = (Real(n.hi[a]) - p.ray.org[a]) * p.inv_dir[a];
         if (ta > tb) std::swap(ta, tb);
+        tb *= kSlabWiden;
         // NaN (0 * inf, ray in the slab plane) leaves the interval unchanged.
         t0 = ta > t0 ? ta : t0;
         t1 = tb < t1 ? tb : t1;
