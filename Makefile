@@ -48,7 +48,7 @@ $(BUILD)/%.o: %.cpp
 	$(CXX) $(CPPFLAGS) $(CXXFLAGS) -c $< -o $@
 
 $(BUILD)/rt_tests: $(TEST_OBJ) $(BUILD)/librt.a
-	$(CXX) $(CXXFLAGS) -o $@ $^ -lgtest -lgtest_main $(LDLIBS)
+	$(CXX) $(CXXFLAGS) -o $@ $^ -lgtest $(LDLIBS)
 
 # Tests read the course files from ../shared (or $$RT_SHARED_DIR); the CLI tests
 # run ./raytracer, so it is built first.
