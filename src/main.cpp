@@ -126,10 +126,10 @@ bool run_scene(const std::string& scene_path, const Options& o) {
             std::fprintf(stderr, "warning: %s: skipped %zu degenerate triangle%s\n", scene_path.c_str(),
                          scene.degenerate_triangles, scene.degenerate_triangles > 1 ? "s" : "");
     } catch (const rt::InputError& e) {
-        std::fprintf(stderr, "error: %s\n", e.what());
+        std::fprintf(stderr, "%s\n", e.what());
         return false;
     } catch (const std::bad_alloc&) {
-        std::fprintf(stderr, "error: %s: out of memory while loading\n", scene_path.c_str());
+        std::fprintf(stderr, "%s: out of memory while loading\n", scene_path.c_str());
         return false;
     }
 
@@ -150,10 +150,10 @@ bool run_scene(const std::string& scene_path, const Options& o) {
                              out.c_str(), cam.width, cam.height, scene.triangles.size(), scene.spheres.size(), load_s,
                              double(scene.build_seconds), render_s, seconds_since(w0));
         } catch (const rt::InputError& e) {
-            std::fprintf(stderr, "error: %s: camera %zu: %s\n", scene_path.c_str(), c + 1, e.what());
+            std::fprintf(stderr, "%s: camera %zu: %s\n", scene_path.c_str(), c + 1, e.what());
             ok = false;
         } catch (const std::bad_alloc&) {
-            std::fprintf(stderr, "error: %s: camera %zu: out of memory rendering %s\n", scene_path.c_str(), c + 1,
+            std::fprintf(stderr, "%s: camera %zu: out of memory rendering %s\n", scene_path.c_str(), c + 1,
                          out.c_str());
             ok = false;
         }

@@ -19,6 +19,7 @@
 #include "rt/ply.h"
 
 #include <fcntl.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -230,48 +231,78 @@ inline int64_t load_int(const unsigned char* p, Type t) {
 }
 
 // ---------------------------------------------------------------------------------
-// The whole file in memory.
+// The whole file in memory: a read-only mapping for regular files of some size
+// (no copy; MAP_POPULATE maps the cached pages up front), else one heap buffer
+// filled by read(). Caveat of the mapping: if another process truncates the file
+// while we parse it, the access past the new end raises SIGBUS; scene inputs are
+// not rewritten while being rendered, and the speed gain is large (see report).
 
-struct FileBytes {
-    std::unique_ptr<unsigned char[]> data;  // deliberately not zero-initialised
-    size_t size = 0;
-};
-
-FileBytes read_whole_file(const std::string& path) {
-    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
-    if (fd < 0) throw InputError(path + ": cannot open: " + errno_text(errno));
-    struct Closer {
-        int fd;
-        ~Closer() { ::close(fd); }
-    } closer{fd};
-
-    struct stat st;
-    if (::fstat(fd, &st) != 0) throw InputError(path + ": cannot open: " + errno_text(errno));
-    if (S_ISDIR(st.st_mode)) throw InputError(path + ": cannot open: " + errno_text(EISDIR));
-
-    // Regular files: one read of the known size (+1 so that EOF is seen without
-    // growing). Pipes and the like: grow as needed.
-    size_t cap = S_ISREG(st.st_mode) ? static_cast<size_t>(st.st_size) + 1 : size_t(1) << 16;
-    FileBytes f;
-    f.data.reset(new unsigned char[cap]);
-    for (;;) {
-        if (f.size == cap) {
-            const size_t new_cap = cap * 2;
-            std::unique_ptr<unsigned char[]> bigger(new unsigned char[new_cap]);
-            std::memcpy(bigger.get(), f.data.get(), f.size);
-            f.data = std::move(bigger);
-            cap = new_cap;
-        }
-        const ssize_t got = ::read(fd, f.data.get() + f.size, cap - f.size);
-        if (got < 0) {
-            if (errno == EINTR) continue;
-            throw InputError(path + ": cannot read: " + errno_text(errno));
-        }
-        if (got == 0) break;
-        f.size += static_cast<size_t>(got);
+class FileBytes {
+public:
+    FileBytes() = default;
+    FileBytes(const FileBytes&) = delete;
+    FileBytes& operator=(const FileBytes&) = delete;
+    ~FileBytes() {
+        if (map_) ::munmap(map_, size_);
     }
-    return f;
-}
+    const unsigned char* data() const {
+        return map_ ? static_cast<const unsigned char*>(map_) : heap_.get();
+    }
+    size_t size() const { return size_; }
+
+    static constexpr size_t kMapThreshold = size_t(1) << 20;
+
+    void load(const std::string& path) {
+        const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
+        if (fd < 0) throw InputError(path + ": cannot open: " + errno_text(errno));
+        struct Closer {
+            int fd;
+            ~Closer() { ::close(fd); }
+        } closer{fd};
+
+        struct stat st;
+        if (::fstat(fd, &st) != 0) throw InputError(path + ": cannot open: " + errno_text(errno));
+        if (S_ISDIR(st.st_mode)) throw InputError(path + ": cannot open: " + errno_text(EISDIR));
+
+        if (S_ISREG(st.st_mode) && static_cast<uint64_t>(st.st_size) >= kMapThreshold) {
+            void* m = ::mmap(nullptr, static_cast<size_t>(st.st_size), PROT_READ,
+                             MAP_PRIVATE | MAP_POPULATE, fd, 0);
+            if (m != MAP_FAILED) {
+                ::madvise(m, static_cast<size_t>(st.st_size), MADV_SEQUENTIAL);
+                map_ = m;
+                size_ = static_cast<size_t>(st.st_size);
+                return;
+            }
+            // Fall through to read() (e.g. a file system without mmap support).
+        }
+
+        // Regular files: one read of the known size (+1 so that EOF is seen without
+        // growing). Pipes and the like: grow as needed. Not zero-initialised.
+        size_t cap = S_ISREG(st.st_mode) ? static_cast<size_t>(st.st_size) + 1 : size_t(1) << 16;
+        heap_.reset(new unsigned char[cap]);
+        for (;;) {
+            if (size_ == cap) {
+                const size_t new_cap = cap * 2;
+                std::unique_ptr<unsigned char[]> bigger(new unsigned char[new_cap]);
+                std::memcpy(bigger.get(), heap_.get(), size_);
+                heap_ = std::move(bigger);
+                cap = new_cap;
+            }
+            const ssize_t got = ::read(fd, heap_.get() + size_, cap - size_);
+            if (got < 0) {
+                if (errno == EINTR) continue;
+                throw InputError(path + ": cannot read: " + errno_text(errno));
+            }
+            if (got == 0) break;
+            size_ += static_cast<size_t>(got);
+        }
+    }
+
+private:
+    void* map_ = nullptr;
+    std::unique_ptr<unsigned char[]> heap_;
+    size_t size_ = 0;
+};
 
 // ---------------------------------------------------------------------------------
 // The parser. One instance per file; parse() is called once.
@@ -850,8 +881,9 @@ private:
 }  // namespace
 
 PlyMesh read_ply(const std::string& path) {
-    const FileBytes f = read_whole_file(path);
-    PlyParser parser(path, f.data.get(), f.size);
+    FileBytes f;
+    f.load(path);
+    PlyParser parser(path, f.data(), f.size());
     return parser.parse();
 }
 

@@ -1,0 +1,414 @@
+// Conformance against the course's reference images.
+//
+// Every MANIFEST.tsv row whose inputs are "complete" is rendered in process through
+// the library (load_scene -> build_scene -> render) and compared with its reference:
+// an image fails when more than 0.2% of its pixels differ by more than one level in
+// some channel. A Markdown table of all comparisons is printed once, after the last
+// test. Rows with missing PLY files are run through ./raytracer, which must fail
+// cleanly: a one-line error naming the missing file, and no image.
+//
+// Environment:
+//   RT_SHARED_DIR        the course's shared folder (default ../shared)
+//   RT_CONFORMANCE_OUT   a folder to receive our renders and diff images (pixels off
+//                        by more than one level in red over the dimmed reference)
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "rt/error.h"
+#include "rt/image.h"
+#include "rt/loader.h"
+#include "rt/render.h"
+#include "rt/scene.h"
+#include "test_support.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr double kFailPct = 0.2;    // % of pixels off by > 1 level that fails an image
+constexpr double kTightPct = 0.05;  // the stricter mark reported in the table
+
+struct ManifestRow {
+    std::string scene;      // relative to scenes/hw1
+    std::string image;      // the camera ImageName
+    std::string reference;  // relative to the shared folder
+    std::string inputs;     // "complete" or "incomplete: missing <file>"
+    int line = 0;
+
+    bool complete() const { return inputs == "complete"; }
+    // The missing file named by an "incomplete: missing <file>" entry.
+    std::string missing_file() const {
+        const std::string key = "missing ";
+        size_t at = inputs.find(key);
+        return at == std::string::npos ? std::string() : inputs.substr(at + key.size());
+    }
+};
+
+void PrintTo(const ManifestRow& row, std::ostream* os) {
+    *os << row.scene << " -> " << row.image << " (" << row.inputs << ")";
+}
+
+std::string trim(const std::string& s) {
+    size_t b = s.find_first_not_of(" \t\r\n");
+    if (b == std::string::npos) return "";
+    size_t e = s.find_last_not_of(" \t\r\n");
+    return s.substr(b, e - b + 1);
+}
+
+std::string manifest_path() {
+    std::string root = shared_dir();
+    return root.empty() ? std::string() : root + "/scenes/hw1/MANIFEST.tsv";
+}
+
+// Parsed once; empty when the shared folder or the manifest is missing.
+const std::vector<ManifestRow>& manifest() {
+    static const std::vector<ManifestRow> rows = [] {
+        std::vector<ManifestRow> out;
+        std::string path = manifest_path();
+        if (path.empty()) return out;
+        std::ifstream f(path);
+        std::string line;
+        int number = 0;
+        while (std::getline(f, line)) {
+            ++number;
+            if (trim(line).empty() || trim(line)[0] == '#') continue;
+            std::vector<std::string> cols;
+            std::stringstream ss(line);
+            std::string col;
+            while (std::getline(ss, col, '\t')) cols.push_back(trim(col));
+            if (cols.size() < 4) continue;  // reported by Conformance.ManifestReadable
+            out.push_back({cols[0], cols[1], cols[2], cols[3], number});
+        }
+        return out;
+    }();
+    return rows;
+}
+
+std::vector<ManifestRow> rows_where(bool complete) {
+    std::vector<ManifestRow> out;
+    for (const ManifestRow& r : manifest())
+        if (r.complete() == complete) out.push_back(r);
+    return out;
+}
+
+size_t complete_count() { return rows_where(true).size(); }
+
+// "Car_front_smooth.png" -> "Car_front_smooth": a valid gtest parameter name.
+std::string param_name(const ::testing::TestParamInfo<ManifestRow>& info) {
+    std::string stem = fs::path(info.param.image).stem().string();
+    std::string name;
+    for (char c : stem) name += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+    if (name.empty()) name = "line" + std::to_string(info.param.line);
+    return name;
+}
+
+// ---- The results table, printed once after all tests ----------------------------
+
+struct Result {
+    int line = 0;
+    std::string image;
+    bool compared = false;
+    ImageDiff diff;
+    std::string error;  // why no comparison happened
+};
+
+std::vector<Result>& results() {
+    static std::vector<Result> r;
+    return r;
+}
+
+std::string fmt(double v, int precision) {
+    std::ostringstream ss;
+    ss << std::fixed << std::setprecision(precision) << v;
+    return ss.str();
+}
+
+std::string one_line(std::string s) {
+    std::replace(s.begin(), s.end(), '\n', ' ');
+    std::replace(s.begin(), s.end(), '|', '/');
+    return s;
+}
+
+class ConformanceReport : public ::testing::Environment {
+public:
+    void TearDown() override {
+        std::vector<Result> rows = results();
+        if (rows.empty()) return;
+        std::sort(rows.begin(), rows.end(),
+                  [](const Result& a, const Result& b) { return a.line < b.line; });
+        int within_fail = 0, within_tight = 0;
+        std::ostringstream os;
+        os << "\n## Conformance against the reference images\n\n"
+           << "| image | max diff | mean diff | % px > 1 | PSNR | within 0.05%? |\n"
+           << "|---|---:|---:|---:|---:|:---:|\n";
+        for (const Result& r : rows) {
+            if (!r.compared) {
+                os << "| " << r.image << " | - | - | - | - | ERROR: " << one_line(r.error) << " |\n";
+                continue;
+            }
+            const ImageDiff& d = r.diff;
+            bool tight = d.pct_over_1 <= kTightPct;
+            if (d.pct_over_1 <= kFailPct) ++within_fail;
+            if (tight) ++within_tight;
+            os << "| " << r.image << " | " << d.max_diff << " | " << fmt(d.mean_diff, 4) << " | "
+               << fmt(d.pct_over_1, 3) << " | "
+               << (std::isinf(d.psnr) ? std::string("inf") : fmt(d.psnr, 2) + " dB") << " | "
+               << (tight ? "yes" : (d.pct_over_1 <= kFailPct ? "no" : "NO (fails)")) << " |\n";
+        }
+        const size_t total = complete_count();
+        os << "\n" << within_fail << "/" << total << " within 0.2%, " << within_tight << "/"
+           << total << " within 0.05%";
+        if (rows.size() != total) os << " (" << rows.size() << " of " << total << " images rendered)";
+        os << "\n";
+        std::cout << os.str() << std::flush;
+    }
+};
+
+[[maybe_unused]] ::testing::Environment* const g_report =
+    ::testing::AddGlobalTestEnvironment(new ConformanceReport);
+
+// ---- Scenes, loaded and built once, released after their last image -----------
+
+struct LoadedScene {
+    std::unique_ptr<rt::Scene> scene;
+    std::vector<std::string> image_names;  // per camera
+    std::string error;
+    int remaining = 0;  // complete manifest rows still to render from this scene
+};
+
+std::map<std::string, LoadedScene>& scene_cache() {
+    static std::map<std::string, LoadedScene> cache;
+    return cache;
+}
+
+LoadedScene& acquire_scene(const ManifestRow& row, const std::string& path) {
+    auto& cache = scene_cache();
+    auto it = cache.find(row.scene);
+    if (it != cache.end()) return it->second;
+    LoadedScene& ls = cache[row.scene];
+    for (const ManifestRow& r : manifest())
+        if (r.complete() && r.scene == row.scene) ++ls.remaining;
+    try {
+        rt::SceneDesc desc = rt::load_scene(path);
+        for (const rt::CameraDesc& c : desc.cameras) ls.image_names.push_back(c.image_name);
+        ls.scene = std::make_unique<rt::Scene>(rt::build_scene(desc));
+    } catch (const std::exception& e) {
+        ls.error = e.what();
+        ls.scene.reset();
+    }
+    return ls;
+}
+
+void release_scene(const ManifestRow& row) {
+    auto& cache = scene_cache();
+    auto it = cache.find(row.scene);
+    if (it != cache.end() && --it->second.remaining <= 0) cache.erase(it);
+}
+
+// Pixels off by more than one level in red, the rest the reference at 40%.
+rt::Image diff_image(const rt::Image& ours, const rt::Image& ref) {
+    rt::Image out = ref;
+    for (size_t p = 0; p + 2 < out.rgb.size(); p += 3) {
+        bool over = false;
+        for (size_t c = 0; c < 3; ++c)
+            if (std::abs(int(ours.rgb[p + c]) - int(ref.rgb[p + c])) > 1) over = true;
+        if (over) {
+            out.rgb[p] = 255;
+            out.rgb[p + 1] = 0;
+            out.rgb[p + 2] = 0;
+        } else {
+            int grey = (int(ref.rgb[p]) + ref.rgb[p + 1] + ref.rgb[p + 2]) / 3;
+            for (size_t c = 0; c < 3; ++c) out.rgb[p + c] = uint8_t(grey * 2 / 5);
+        }
+    }
+    return out;
+}
+
+void write_eyeball_output(const ManifestRow& row, const rt::Image& ours, const rt::Image& ref) {
+    const char* env = std::getenv("RT_CONFORMANCE_OUT");
+    if (!env || !*env) return;
+    std::error_code ec;
+    fs::create_directories(env, ec);
+    const std::string stem = fs::path(row.image).stem().string();
+    try {
+        rt::write_png(ours, std::string(env) + "/" + fs::path(row.image).filename().string());
+        if (ours.width == ref.width && ours.height == ref.height)
+            rt::write_png(diff_image(ours, ref), std::string(env) + "/" + stem + "_diff.png");
+    } catch (const std::exception& e) {
+        ADD_FAILURE() << "RT_CONFORMANCE_OUT: " << e.what();
+    }
+}
+
+struct Release {
+    const ManifestRow& row;
+    ~Release() { release_scene(row); }
+};
+
+}  // namespace
+
+// ---- Tests ------------------------------------------------------------------------
+
+TEST(Conformance, ManifestReadable) {
+    if (shared_dir().empty()) {
+        std::cout << "\n"
+                  << "********************************************************************\n"
+                  << "*** CONFORMANCE TESTS SKIPPED: ../shared not found (set RT_SHARED_DIR)\n"
+                  << "********************************************************************\n"
+                  << std::flush;
+        GTEST_SKIP() << "CONFORMANCE TESTS SKIPPED: ../shared not found (set RT_SHARED_DIR)";
+    }
+    std::ifstream f(manifest_path());
+    ASSERT_TRUE(f.good()) << "cannot read " << manifest_path();
+    std::string line;
+    int number = 0;
+    while (std::getline(f, line)) {
+        ++number;
+        if (trim(line).empty() || trim(line)[0] == '#') continue;
+        int tabs = int(std::count(line.begin(), line.end(), '\t'));
+        EXPECT_GE(tabs, 3) << manifest_path() << ":" << number << ": fewer than 4 columns";
+    }
+    EXPECT_EQ(complete_count(), 20u) << "the HW1 manifest lists 20 complete images";
+    for (const ManifestRow& r : rows_where(false))
+        EXPECT_FALSE(r.missing_file().empty()) << "line " << r.line << ": " << r.inputs;
+}
+
+class ConformanceImage : public ::testing::TestWithParam<ManifestRow> {};
+
+TEST_P(ConformanceImage, MatchesReference) {
+    const ManifestRow& row = GetParam();
+    const std::string root = shared_dir();
+    const std::string scene_path = root + "/scenes/hw1/" + row.scene;
+    const std::string ref_path = root + "/" + row.reference;
+
+    Result rec;
+    rec.line = row.line;
+    rec.image = row.image;
+    struct Record {
+        Result& r;
+        ~Record() { results().push_back(r); }
+    } record{rec};
+    Release release{row};
+
+    rt::Image ref;
+    if (!load_png(ref_path, ref)) {
+        rec.error = "cannot read reference " + ref_path;
+        FAIL() << rec.error;
+    }
+
+    LoadedScene& ls = acquire_scene(row, scene_path);
+    if (!ls.scene) {
+        rec.error = "load/build failed: " + ls.error;
+        FAIL() << scene_path << ": " << rec.error;
+    }
+
+    size_t camera = ls.image_names.size();
+    for (size_t i = 0; i < ls.image_names.size(); ++i) {
+        const std::string& name = ls.image_names[i];
+        if (name == row.image || fs::path(name).filename().string() == row.image) {
+            camera = i;
+            break;
+        }
+    }
+    if (camera == ls.image_names.size()) {
+        rec.error = "no camera with ImageName " + row.image;
+        FAIL() << scene_path << ": " << rec.error;
+    }
+
+    rt::Image ours;
+    try {
+        ours = rt::render(*ls.scene, camera, rt::RenderOptions{});
+    } catch (const std::exception& e) {
+        rec.error = std::string("render threw: ") + e.what();
+        FAIL() << scene_path << ": " << rec.error;
+    }
+
+    write_eyeball_output(row, ours, ref);
+
+    if (ours.width != ref.width || ours.height != ref.height ||
+        ours.rgb.size() != size_t(ours.width) * size_t(ours.height) * 3) {
+        rec.error = "rendered " + std::to_string(ours.width) + "x" + std::to_string(ours.height) +
+                    " (" + std::to_string(ours.rgb.size()) + " bytes), reference " +
+                    std::to_string(ref.width) + "x" + std::to_string(ref.height);
+        FAIL() << row.image << ": " << rec.error;
+    }
+
+    rec.diff = compare(ours, ref);
+    rec.compared = true;
+    EXPECT_LE(rec.diff.pct_over_1, kFailPct)
+        << row.image << ": " << fmt(rec.diff.pct_over_1, 3) << "% of pixels differ by more than 1 level"
+        << " (max diff " << rec.diff.max_diff << ", mean " << fmt(rec.diff.mean_diff, 4) << ")";
+}
+
+INSTANTIATE_TEST_SUITE_P(HW1, ConformanceImage, ::testing::ValuesIn(rows_where(true)), param_name);
+GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(ConformanceImage);
+
+// Scenes whose PLY files were not distributed: the renderer must refuse them cleanly.
+class ConformanceIncomplete : public ::testing::TestWithParam<ManifestRow> {};
+
+TEST_P(ConformanceIncomplete, BinaryFailsCleanly) {
+    const ManifestRow& row = GetParam();
+    const std::string scene_path = shared_dir() + "/scenes/hw1/" + row.scene;
+    const std::string missing = fs::path(row.missing_file()).filename().string();
+    ASSERT_FALSE(missing.empty()) << row.inputs;
+
+    TempDir tmp;
+    RunResult r = run_raytracer({"-o", tmp.path(), scene_path}, tmp.path());
+    const std::string dump = "\n--- stderr ---\n" + r.err + "--- stdout ---\n" + r.out;
+
+    EXPECT_NE(r.exit_code, 0) << dump;
+    EXPECT_LT(r.exit_code, 128) << "killed by a signal" << dump;
+    EXPECT_NE(r.err.find(missing), std::string::npos) << "stderr does not name " << missing << dump;
+
+    // One line per error: no blank lines, newline-terminated, and exactly one
+    // line that is not a warning (the error itself).
+    EXPECT_TRUE(!r.err.empty() && r.err.back() == '\n') << "stderr not newline-terminated" << dump;
+    int errors = 0;
+    for (const std::string& l : split_lines(r.err)) {
+        EXPECT_FALSE(trim(l).empty()) << "blank line on stderr" << dump;
+        std::string lower = l;
+        std::transform(lower.begin(), lower.end(), lower.begin(),
+                       [](unsigned char c) { return char(std::tolower(c)); });
+        if (lower.find("warning") == std::string::npos && !trim(l).empty()) ++errors;
+    }
+    EXPECT_EQ(errors, 1) << "expected exactly one error line" << dump;
+
+    for (const std::string& f : list_files(tmp.path()))
+        EXPECT_NE(fs::path(f).extension(), ".png") << "an image was written: " << f << dump;
+    EXPECT_FALSE(file_exists(tmp / row.image)) << dump;
+}
+
+TEST_P(ConformanceIncomplete, LoaderThrowsInputError) {
+    const ManifestRow& row = GetParam();
+    const std::string scene_path = shared_dir() + "/scenes/hw1/" + row.scene;
+    const std::string missing = fs::path(row.missing_file()).filename().string();
+    try {
+        rt::SceneDesc desc = rt::load_scene(scene_path);
+        rt::Scene scene = rt::build_scene(desc);
+        (void)scene;
+        FAIL() << "loading " << scene_path << " succeeded although " << missing << " is missing";
+    } catch (const rt::InputError& e) {
+        std::string what = e.what();
+        EXPECT_NE(what.find(missing), std::string::npos) << what;
+        EXPECT_EQ(what.find('\n'), std::string::npos) << "multi-line message: " << what;
+    } catch (const std::exception& e) {
+        FAIL() << "threw something other than rt::InputError: " << e.what();
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(HW1, ConformanceIncomplete, ::testing::ValuesIn(rows_where(false)),
+                         param_name);
+GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(ConformanceIncomplete);

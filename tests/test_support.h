@@ -1,0 +1,72 @@
+// Helpers shared by the tests: where the course files are, temporary folders,
+// running the ./raytracer binary, reading PNGs back and comparing images.
+#pragma once
+#include <string>
+#include <vector>
+
+#include "rt/image.h"
+
+// The course's shared files (scenes, references, spec): $RT_SHARED_DIR when set,
+// else ../shared relative to the current directory (tests run from the repo root),
+// as an absolute path; empty when the chosen folder does not exist.
+std::string shared_dir();
+
+// A fresh, empty folder under /tmp (mkdtemp). Throws std::runtime_error on failure.
+std::string make_temp_dir();
+
+// A make_temp_dir() folder removed with everything in it when the object dies.
+// Set RT_KEEP_TEMP=1 to keep it for inspection.
+class TempDir {
+public:
+    TempDir();
+    ~TempDir();
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+    const std::string& path() const { return path_; }
+    std::string operator/(const std::string& name) const { return path_ + "/" + name; }
+
+private:
+    std::string path_;
+};
+
+struct RunResult {
+    int exit_code = -1;  // WEXITSTATUS, or 128 + signal number when killed by a signal
+    std::string out, err;
+};
+
+// Runs the repo's ./raytracer (resolved to an absolute path from the directory the
+// test program started in) with `args`, in `cwd` when given, stdin from /dev/null,
+// stdout and stderr captured. A run longer than `timeout_seconds` is killed
+// (SIGALRM, exit_code 142). If the binary cannot be executed, exit_code is 127.
+RunResult run_raytracer(const std::vector<std::string>& args, const std::string& cwd = "",
+                        unsigned timeout_seconds = 120);
+
+// The absolute path run_raytracer executes.
+std::string raytracer_path();
+
+// Reads a PNG (any channel count) as 8-bit RGB. False when it cannot be read.
+bool load_png(const std::string& path, rt::Image& out);
+
+struct ImageDiff {
+    int max_diff = 0;         // largest absolute difference of any channel, in levels
+    double mean_diff = 0;     // mean absolute difference over all channel values
+    double pct_over_1 = 0;    // percentage of pixels with some channel off by more than 1
+    double psnr = 0;          // over all channels, dB; +inf when identical
+};
+
+// Per-channel comparison of two images of the same size. Images of different sizes
+// compare as totally different: max_diff 256, mean_diff 255, pct_over_1 100, psnr 0.
+ImageDiff compare(const rt::Image& a, const rt::Image& b);
+
+// Writes `content` to `path` (truncating). Throws std::runtime_error on failure.
+void write_text(const std::string& path, const std::string& content);
+
+// Reads a whole file; throws std::runtime_error when it cannot be read.
+std::string read_text(const std::string& path);
+
+// Small file utilities.
+bool file_exists(const std::string& path);
+std::vector<std::string> split_lines(const std::string& text);  // no trailing empty line
+// Regular files (and anything else that is not a folder) under `dir`, recursively,
+// as sorted paths relative to `dir`.
+std::vector<std::string> list_files(const std::string& dir);
