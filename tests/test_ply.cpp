@@ -5,11 +5,11 @@
 // the three encodings, so the same mesh can be checked in ascii, little and big
 // endian. Expected results are worked out by hand in each test.
 #include <gtest/gtest.h>
-
 #include <stdlib.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdint>
@@ -67,15 +67,24 @@ void put(std::string& out, T v, bool big) {
 
 void encode_binary(std::string& out, const Val& v, bool big) {
     const std::string& t = v.type;
-    if (t == "char" || t == "int8") put(out, static_cast<int8_t>(v.value), big);
-    else if (t == "uchar" || t == "uint8") put(out, static_cast<uint8_t>(v.value), big);
-    else if (t == "short" || t == "int16") put(out, static_cast<int16_t>(v.value), big);
-    else if (t == "ushort" || t == "uint16") put(out, static_cast<uint16_t>(v.value), big);
-    else if (t == "int" || t == "int32") put(out, static_cast<int32_t>(v.value), big);
-    else if (t == "uint" || t == "uint32") put(out, static_cast<uint32_t>(v.value), big);
-    else if (t == "float" || t == "float32") put(out, static_cast<float>(v.value), big);
-    else if (t == "double" || t == "float64") put(out, v.value, big);
-    else throw std::logic_error("test bug: unknown type " + t);
+    if (t == "char" || t == "int8")
+        put(out, static_cast<int8_t>(v.value), big);
+    else if (t == "uchar" || t == "uint8")
+        put(out, static_cast<uint8_t>(v.value), big);
+    else if (t == "short" || t == "int16")
+        put(out, static_cast<int16_t>(v.value), big);
+    else if (t == "ushort" || t == "uint16")
+        put(out, static_cast<uint16_t>(v.value), big);
+    else if (t == "int" || t == "int32")
+        put(out, static_cast<int32_t>(v.value), big);
+    else if (t == "uint" || t == "uint32")
+        put(out, static_cast<uint32_t>(v.value), big);
+    else if (t == "float" || t == "float32")
+        put(out, static_cast<float>(v.value), big);
+    else if (t == "double" || t == "float64")
+        put(out, v.value, big);
+    else
+        throw std::logic_error("test bug: unknown type " + t);
 }
 
 std::string encode_ascii(const Val& v) {
@@ -97,8 +106,10 @@ struct PlyFile {
         std::string h = "ply" + eol + "format " + enc_name(enc) + " 1.0" + eol +
                         "comment written by test_ply" + eol;
         for (char c : elements) {
-            if (c == '\n') h += eol;
-            else h += c;
+            if (c == '\n')
+                h += eol;
+            else
+                h += c;
         }
         return h + "end_header" + eol;
     }
@@ -258,8 +269,8 @@ TEST_F(PlyTest, VertexListPropertyAndMixedCoordinateTypes) {
         "element vertex 3\nproperty short x\nproperty list uchar float weights\n"
         "property int32 y\nproperty uint8 z\n"
         "element face 1\nproperty list uchar int vertex_indices\n";
-    f.records.push_back({{"short", -3}, {"uchar", 2}, {"float", 1}, {"float", 2},
-                         {"int32", 100000}, {"uint8", 7}});
+    f.records.push_back(
+        {{"short", -3}, {"uchar", 2}, {"float", 1}, {"float", 2}, {"int32", 100000}, {"uint8", 7}});
     f.records.push_back({{"short", 5}, {"uchar", 0}, {"int32", -1}, {"uint8", 0}});
     f.records.push_back({{"short", 0}, {"uchar", 1}, {"float", 9}, {"int32", 2}, {"uint8", 255}});
     f.records.push_back(face("uchar", "int", {2, 1, 0}));
@@ -272,17 +283,18 @@ TEST_F(PlyTest, VertexListPropertyAndMixedCoordinateTypes) {
 }
 
 TEST_F(PlyTest, ListCountAndIndexTypes) {
-    const char* count_types[] = {"uchar", "uint8", "char", "int8", "ushort", "uint16",
-                                 "short", "int16", "int",   "int32", "uint",  "uint32"};
+    const char* count_types[] = {"uchar", "uint8", "char", "int8",  "ushort", "uint16",
+                                 "short", "int16", "int",  "int32", "uint",   "uint32"};
     const char* index_types[] = {"uchar", "uint8", "char",  "ushort", "uint16",
                                  "short", "int",   "int32", "uint",   "uint32"};
     for (const char* ct : count_types) {
         for (const char* it : index_types) {
             // A triangle and a quad: exercises both the triangle and the polygon path.
             PlyFile f;
-            f.elements = "element vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
-                         "element face 2\nproperty list " +
-                         std::string(ct) + " " + it + " vertex_indices\n";
+            f.elements =
+                "element vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+                "element face 2\nproperty list " +
+                std::string(ct) + " " + it + " vertex_indices\n";
             for (size_t i = 0; i < 4; ++i)
                 f.records.push_back(xyz("float", kQuadPositions[3 * i], kQuadPositions[3 * i + 1],
                                         kQuadPositions[3 * i + 2]));
@@ -323,9 +335,9 @@ TEST_F(PlyTest, QuadAndPentagonAreFanSplit) {
     f.records.push_back(face("uchar", "int", {1, 2, 3}));        // triangle
     f.records.push_back(face("uchar", "int", {0, 1, 2, 3, 4}));  // pentagon
     const std::vector<uint32_t> expected = {
-        5, 4, 3, 5, 3, 2,                // quad: (v0 v1 v2) (v0 v2 v3)
-        1, 2, 3,                         // triangle as is
-        0, 1, 2, 0, 2, 3, 0, 3, 4,       // pentagon: three triangles around v0
+        5, 4, 3, 5, 3, 2,           // quad: (v0 v1 v2) (v0 v2 v3)
+        1, 2, 3,                    // triangle as is
+        0, 1, 2, 0, 2, 3, 0, 3, 4,  // pentagon: three triangles around v0
     };
     for (Enc enc : kAllEncodings) {
         SCOPED_TRACE(enc_name(enc));
@@ -347,8 +359,8 @@ TEST_F(PlyTest, OtherElementsAndFacePropertiesAreSkipped) {
         "property list ushort float texcoord\nproperty double area\n"
         "element extra 3\nproperty list short double stuff\n"
         "element nothing 5\n";  // no properties at all
-    f.records.push_back({{"float", 0.5}, {"uchar", 1}, {"uchar", 3}, {"uchar", 65},
-                         {"uchar", 66}, {"uchar", 67}});
+    f.records.push_back(
+        {{"float", 0.5}, {"uchar", 1}, {"uchar", 3}, {"uchar", 65}, {"uchar", 66}, {"uchar", 67}});
     f.records.push_back({{"float", 1.5}, {"uchar", 2}, {"uchar", 0}});
     for (size_t i = 0; i < 4; ++i)
         f.records.push_back(xyz("float", kQuadPositions[3 * i], kQuadPositions[3 * i + 1],
@@ -434,9 +446,11 @@ TEST_F(PlyTest, BigEndianDoubleCoordinates) {
     f.elements =
         "element vertex 3\nproperty float64 x\nproperty double y\nproperty double z\n"
         "element face 1\nproperty list uint16 uint32 vertex_indices\n";
-    const std::vector<double> pos = {0.1, -1e-300, 123456789.123456789, 1e300, 2.0 / 3.0, -0.0,
-                                     3.141592653589793, 5e-324, -7.25};
-    for (int i = 0; i < 3; ++i) f.records.push_back(xyz("double", pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]));
+    const std::vector<double> pos = {0.1,       -1e-300, 123456789.123456789, 1e300,
+                                     2.0 / 3.0, -0.0,    3.141592653589793,   5e-324,
+                                     -7.25};
+    for (int i = 0; i < 3; ++i)
+        f.records.push_back(xyz("double", pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]));
     f.records.push_back(face("uint16", "uint32", {1, 2, 0}));
     const std::string bytes = f.render(Enc::Big);
     // Spot-check the encoding itself: 0.1 big-endian starts with 0x3f 0xb9.
@@ -478,18 +492,18 @@ TEST_F(PlyTest, MissingFileAndDirectory) {
 TEST_F(PlyTest, NotAPlyFile) {
     expect_error(write("empty.ply", ""), "byte 0:", "not a PLY file");
     expect_error(write("text.ply", "hello world\nformat ascii 1.0\n"), "byte 0:", "not a PLY file");
-    expect_error(write("upper.ply", "PLY\nformat ascii 1.0\nend_header\n"), "byte 0:",
-                 "not a PLY file");
-    expect_error(write("binary.ply", std::string("\x89PNG\r\n\x1a\n\0\0", 10)), "byte 0:",
-                 "not a PLY file");
+    expect_error(write("upper.ply", "PLY\nformat ascii 1.0\nend_header\n"),
+                 "byte 0:", "not a PLY file");
+    expect_error(write("binary.ply", std::string("\x89PNG\r\n\x1a\n\0\0", 10)),
+                 "byte 0:", "not a PLY file");
 }
 
 TEST_F(PlyTest, HeaderErrors) {
     // The byte offset is that of the offending header line.
-    expect_error(write("fmt.ply", "ply\nformat binary_middle_endian 1.0\nend_header\n"), "byte 4:",
-                 "unknown format 'binary_middle_endian'");
-    expect_error(write("ver.ply", "ply\nformat ascii 2.0\nend_header\n"), "byte 4:",
-                 "unsupported PLY version");
+    expect_error(write("fmt.ply", "ply\nformat binary_middle_endian 1.0\nend_header\n"),
+                 "byte 4:", "unknown format 'binary_middle_endian'");
+    expect_error(write("ver.ply", "ply\nformat ascii 2.0\nend_header\n"),
+                 "byte 4:", "unsupported PLY version");
     expect_error(write("nofmt.ply", "ply\nelement vertex 0\nproperty float x\nend_header\n"),
                  "byte ", "missing format");
     expect_error(write("type.ply",
@@ -574,8 +588,8 @@ TEST_F(PlyTest, TruncatedAsciiBody) {
         "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
         "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
         "0.0 0.0 0.0\n1.0 0.0 0.0\n0.0 1.0 0.0\n3 0 1\n";  // long enough for the size check
-    expect_error(write("ascii_short.ply", text), "line 14:",
-                 "unexpected end of file in element 'face' record 0 of 1");
+    expect_error(write("ascii_short.ply", text),
+                 "line 14:", "unexpected end of file in element 'face' record 0 of 1");
     const std::string no_nl = text.substr(0, text.size() - 1);
     expect_error(write("ascii_short2.ply", no_nl), "line 13:", "unexpected end of file");
 }
@@ -596,14 +610,16 @@ TEST_F(PlyTest, VertexIndexOutOfRange) {
     expect_error(write(Enc::Little, "neg.ply", f), "byte ", "vertex index -1 out of range");
     expect_error(write(Enc::Ascii, "neg.ply", f), "line 16:", "vertex index -1 out of range");
     PlyFile s = reference_mesh();
-    s.elements = "element vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
-                 "element face 2\nproperty list uchar short vertex_indices\n";
+    s.elements =
+        "element vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+        "element face 2\nproperty list uchar short vertex_indices\n";
     s.records[4] = face("uchar", "short", {0, 1, -2});
     s.records[5] = face("uchar", "short", {0, 1, 2});
     expect_error(write(Enc::Big, "neg_short.ply", s), "byte ", "vertex index -2 out of range");
     // Large uint index in a quad.
-    s.elements = "element vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
-                 "element face 2\nproperty list uint uint vertex_indices\n";
+    s.elements =
+        "element vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+        "element face 2\nproperty list uint uint vertex_indices\n";
     s.records[4] = face("uint", "uint", {0, 1, 2});
     s.records[5] = face("uint", "uint", {0, 1, 2, 4000000000LL});
     expect_error(write(Enc::Little, "big_uint.ply", s), "byte ", "vertex index 4000000000");
@@ -641,19 +657,20 @@ TEST_F(PlyTest, BadAsciiNumbers) {
     const std::string head =
         "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
         "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
-    expect_error(write("bad1.ply", head + "0 0 0\n1.0abc 0 0\n3 0 1 1\n"), "line 11:",
-                 "bad number '1.0abc'");
-    expect_error(write("bad2.ply", head + "0 0 0\n1 0 0\n3 0 1 1.0\n"), "line 12:",
-                 "bad integer '1.0'");
-    expect_error(write("bad3.ply", head + "0 0 0\n1 0 0\nthree 0 1 1\n"), "line 12:",
-                 "bad integer 'three'");
+    expect_error(write("bad1.ply", head + "0 0 0\n1.0abc 0 0\n3 0 1 1\n"),
+                 "line 11:", "bad number '1.0abc'");
+    expect_error(write("bad2.ply", head + "0 0 0\n1 0 0\n3 0 1 1.0\n"),
+                 "line 12:", "bad integer '1.0'");
+    expect_error(write("bad3.ply", head + "0 0 0\n1 0 0\nthree 0 1 1\n"),
+                 "line 12:", "bad integer 'three'");
 }
 
 TEST_F(PlyTest, NegativeListCounts) {
     // Index list with a signed count type.
     PlyFile f = reference_mesh();
-    f.elements = "element vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
-                 "element face 2\nproperty list char int vertex_indices\n";
+    f.elements =
+        "element vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+        "element face 2\nproperty list char int vertex_indices\n";
     f.records[4] = face("char", "int", {0, 1, 2});
     f.records[5] = {{"char", -1}, {"int", 0}, {"int", 0}, {"int", 0}};
     const size_t count_offset = f.header(Enc::Little).size() + 4 * 12 + 13;
@@ -688,7 +705,8 @@ TEST_F(PlyTest, ImpossibleCountsFailFastWithoutAllocating) {
     const std::string big = std::to_string(uint64_t(1) << 40);
     const std::string faces =
         "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-        "element face " + big + "\nproperty list uchar int vertex_indices\n";
+        "element face " +
+        big + "\nproperty list uchar int vertex_indices\n";
     const std::string verts =
         "element vertex " + big + "\nproperty float x\nproperty float y\nproperty float z\n";
     const std::string skipped =
@@ -716,9 +734,74 @@ TEST_F(PlyTest, ImpossibleCountsFailFastWithoutAllocating) {
         }
     }
     // One past the largest 64-bit count is not a count at all.
-    expect_error(write("overflow.ply", "ply\nformat binary_little_endian 1.0\n"
-                                      "element vertex 18446744073709551616\nend_header\n"),
+    expect_error(write("overflow.ply",
+                       "ply\nformat binary_little_endian 1.0\n"
+                       "element vertex 18446744073709551616\nend_header\n"),
                  "byte ", "bad element count");
+}
+
+TEST_F(PlyTest, LargeBinaryFile) {
+    // Files of 1 MiB and more are mapped rather than read; same results and errors.
+    // A 300 x 300 vertex grid, two triangles per cell, plus one quad at the end.
+    const int n = 300;
+    const uint32_t nv = n * n;
+    const uint32_t ntri = 2 * (n - 1) * (n - 1);
+    for (Enc enc : {Enc::Little, Enc::Big}) {
+        SCOPED_TRACE(enc_name(enc));
+        const bool big = enc == Enc::Big;
+        std::string bytes = std::string("ply\nformat ") + enc_name(enc) + " 1.0\nelement vertex " +
+                            std::to_string(nv) +
+                            "\nproperty float x\nproperty float y\nproperty float z\n"
+                            "element face " +
+                            std::to_string(ntri + 1) +
+                            "\nproperty list uchar uint vertex_indices\nend_header\n";
+        std::vector<double> pos;
+        std::vector<uint32_t> idx;
+        for (int j = 0; j < n; ++j) {
+            for (int i = 0; i < n; ++i) {
+                const float v[3] = {static_cast<float>(i) * 0.5f, static_cast<float>(j),
+                                    static_cast<float>((i * 7 + j) % 13) - 6.0f};
+                for (float c : v) {
+                    put(bytes, c, big);
+                    pos.push_back(c);
+                }
+            }
+        }
+        for (int j = 0; j + 1 < n; ++j) {
+            for (int i = 0; i + 1 < n; ++i) {
+                const uint32_t a = static_cast<uint32_t>(j * n + i), b = a + 1, c = a + n,
+                               d = c + 1;
+                for (const uint32_t t : {a, b, d, a, d, c}) idx.push_back(t);
+                put(bytes, uint8_t(3), big);
+                for (const uint32_t t : {a, b, d}) put(bytes, t, big);
+                put(bytes, uint8_t(3), big);
+                for (const uint32_t t : {a, d, c}) put(bytes, t, big);
+            }
+        }
+        put(bytes, uint8_t(4), big);
+        for (const uint32_t t : {0u, 1u, nv - 1, nv - 2}) put(bytes, t, big);
+        for (const uint32_t t : {0u, 1u, nv - 1, 0u, nv - 1, nv - 2}) idx.push_back(t);
+        ASSERT_GT(bytes.size(), size_t(1) << 20);
+
+        const rt::PlyMesh m = rt::read_ply(write(std::string(enc_name(enc)) + "_large.ply", bytes));
+        EXPECT_EQ(m.positions, pos);
+        EXPECT_EQ(m.indices, idx);
+        EXPECT_EQ(m.polygons_split, 1u);
+
+        // The same file cut inside the final quad.
+        expect_error(
+            write(std::string(enc_name(enc)) + "_large_cut.ply", bytes.substr(0, bytes.size() - 3)),
+            "byte " + std::to_string(bytes.size() - 16) + ":", "unexpected end of file");
+        // An out-of-range index in the last triangle of the fast path.
+        std::string bad = bytes;
+        const size_t last_tri_index = bytes.size() - 17 - 4;
+        std::string v;
+        put(v, nv, big);
+        bad.replace(last_tri_index, 4, v);
+        expect_error(write(std::string(enc_name(enc)) + "_large_bad.ply", bad),
+                     "byte " + std::to_string(last_tri_index) + ":",
+                     "vertex index " + std::to_string(nv) + " out of range");
+    }
 }
 
 // ---------------------------------------------------------------------------------

@@ -57,9 +57,13 @@ enum class Type : uint8_t { I8, U8, I16, U16, I32, U32, F32, F64 };
 
 constexpr size_t type_size(Type t) {
     switch (t) {
-        case Type::I8: case Type::U8: return 1;
-        case Type::I16: case Type::U16: return 2;
-        case Type::I32: case Type::U32: case Type::F32: return 4;
+        case Type::I8:
+        case Type::U8: return 1;
+        case Type::I16:
+        case Type::U16: return 2;
+        case Type::I32:
+        case Type::U32:
+        case Type::F32: return 4;
         case Type::F64: return 8;
     }
     return 0;
@@ -69,14 +73,15 @@ constexpr bool is_integer(Type t) { return t != Type::F32 && t != Type::F64; }
 
 // Both spellings of every PLY 1.0 scalar type.
 bool parse_type(std::string_view s, Type& out) {
-    struct Entry { const char* name; Type type; };
+    struct Entry {
+        const char* name;
+        Type type;
+    };
     static const Entry table[] = {
-        {"char", Type::I8},    {"int8", Type::I8},     {"uchar", Type::U8},
-        {"uint8", Type::U8},   {"short", Type::I16},   {"int16", Type::I16},
-        {"ushort", Type::U16}, {"uint16", Type::U16},  {"int", Type::I32},
-        {"int32", Type::I32},  {"uint", Type::U32},    {"uint32", Type::U32},
-        {"float", Type::F32},  {"float32", Type::F32}, {"double", Type::F64},
-        {"float64", Type::F64},
+        {"char", Type::I8},   {"int8", Type::I8},     {"uchar", Type::U8},   {"uint8", Type::U8},
+        {"short", Type::I16}, {"int16", Type::I16},   {"ushort", Type::U16}, {"uint16", Type::U16},
+        {"int", Type::I32},   {"int32", Type::I32},   {"uint", Type::U32},   {"uint32", Type::U32},
+        {"float", Type::F32}, {"float32", Type::F32}, {"double", Type::F64}, {"float64", Type::F64},
     };
     for (const Entry& e : table) {
         if (s == e.name) {
@@ -92,7 +97,7 @@ enum class Role : uint8_t { Skip, X, Y, Z, Indices };
 
 struct Property {
     std::string name;
-    Type type = Type::U8;        // scalar type, or the item type of a list
+    Type type = Type::U8;  // scalar type, or the item type of a list
     bool is_list = false;
     Type count_type = Type::U8;  // lists only; always an integer type
     Role role = Role::Skip;
@@ -171,7 +176,7 @@ uint64_t mul_sat(uint64_t a, uint64_t b) {
 }
 uint64_t add_sat(uint64_t a, uint64_t b) {
     return (b > std::numeric_limits<uint64_t>::max() - a) ? std::numeric_limits<uint64_t>::max()
-                                                           : a + b;
+                                                          : a + b;
 }
 
 // Loads a T stored at p (any alignment), byte-swapping when Swap.
@@ -225,7 +230,8 @@ inline int64_t load_int(const unsigned char* p, Type t) {
         case Type::U16: return load<uint16_t, Swap>(p);
         case Type::I32: return load<int32_t, Swap>(p);
         case Type::U32: return load<uint32_t, Swap>(p);
-        case Type::F32: case Type::F64: break;
+        case Type::F32:
+        case Type::F64: break;
     }
     return 0;
 }
@@ -305,6 +311,44 @@ private:
 };
 
 // ---------------------------------------------------------------------------------
+// Triangle output. The index vector is sized up front for the expected triangles
+// (resize, not reserve, so the hot loops store through a plain pointer); polygons
+// that need more room grow it; finish() trims it to what was written.
+
+class TriangleSink {
+public:
+    TriangleSink(std::vector<uint32_t>& v, size_t expected_indices) : v_(v) {
+        v_.resize(expected_indices);
+        cur_ = v_.data();
+        end_ = cur_ + v_.size();
+    }
+    uint32_t* cursor() const { return cur_; }
+    uint32_t* limit() const { return end_; }
+    void set_cursor(uint32_t* c) { cur_ = c; }
+
+    void put(uint32_t a, uint32_t b, uint32_t c) {
+        if (end_ - cur_ < 3) grow();
+        cur_[0] = a;
+        cur_[1] = b;
+        cur_[2] = c;
+        cur_ += 3;
+    }
+    void finish() { v_.resize(static_cast<size_t>(cur_ - v_.data())); }
+
+private:
+    RT_PLY_COLD void grow() {
+        const size_t used = static_cast<size_t>(cur_ - v_.data());
+        v_.resize(v_.size() + v_.size() / 2 + 3);
+        cur_ = v_.data() + used;
+        end_ = v_.data() + v_.size();
+    }
+
+    std::vector<uint32_t>& v_;
+    uint32_t* cur_;
+    uint32_t* end_;
+};
+
+// ---------------------------------------------------------------------------------
 // The parser. One instance per file; parse() is called once.
 
 class PlyParser {
@@ -316,30 +360,35 @@ public:
         parse_header();
         assign_roles();
         check_sizes();
-        // Indices are 32-bit; vertices past that could not be addressed. (Only a file
-        // of more than 48 GiB gets here.)
+        // Indices are 32-bit; vertices past that could not be addressed. (Only a file of
+        // tens of GiB gets here.)
         const Element& ve = elements_[vertex_el_];
         if (ve.count > (uint64_t(1) << 32))
-            fail_byte(ve.offset, "too many vertices (" + std::to_string(ve.count) +
-                                     ") for 32-bit indices");
+            fail_byte(ve.offset,
+                      "too many vertices (" + std::to_string(ve.count) + ") for 32-bit indices");
 
         PlyMesh mesh;
         // Sizes are bounded by the file size now (check_sizes), so these are safe.
-        mesh.positions.reserve(3 * static_cast<size_t>(elements_[vertex_el_].count));
-        if (face_el_ != kNone)
-            mesh.indices.reserve(3 * static_cast<size_t>(elements_[face_el_].count));
+        TriangleSink tris(mesh.indices, face_el_ == kNone
+                                            ? 0
+                                            : 3 * static_cast<size_t>(elements_[face_el_].count));
 
         switch (format_) {
-            case Format::Ascii: read_ascii(mesh); break;
+            case Format::Ascii: read_ascii(mesh, tris); break;
             case Format::BinaryLittle:
-                if (kHostLittleEndian) read_binary<false>(mesh);
-                else read_binary<true>(mesh);
+                if (kHostLittleEndian)
+                    read_binary<false>(mesh, tris);
+                else
+                    read_binary<true>(mesh, tris);
                 break;
             case Format::BinaryBig:
-                if (kHostLittleEndian) read_binary<true>(mesh);
-                else read_binary<false>(mesh);
+                if (kHostLittleEndian)
+                    read_binary<true>(mesh, tris);
+                else
+                    read_binary<false>(mesh, tris);
                 break;
         }
+        tris.finish();
         return mesh;  // anything after the last element is ignored
     }
 
@@ -352,9 +401,9 @@ private:
 
     Format format_ = Format::Ascii;
     std::vector<Element> elements_;
-    size_t body_offset_ = 0;   // first byte after the end_header line
-    size_t body_line_ = 0;     // 1-based line number of that byte (ascii)
-    size_t header_end_ = 0;    // offset of the end_header line, for messages
+    size_t body_offset_ = 0;  // first byte after the end_header line
+    size_t body_line_ = 0;    // 1-based line number of that byte (ascii)
+    size_t header_end_ = 0;   // offset of the end_header line, for messages
     size_t vertex_el_ = kNone;
     size_t face_el_ = kNone;
     uint64_t vertex_count_ = 0;
@@ -396,8 +445,7 @@ private:
                 nl ? static_cast<size_t>(static_cast<const unsigned char*>(nl) - data_) : size_;
             const size_t next = nl ? line_end + 1 : size_;
             ++line_no;
-            const std::string_view line(reinterpret_cast<const char*>(data_ + pos),
-                                        line_end - pos);
+            const std::string_view line(reinterpret_cast<const char*>(data_ + pos), line_end - pos);
             split_words(line, w);
 
             if (line_no == 1) {
@@ -420,10 +468,14 @@ private:
             } else if (w[0] == "format") {
                 if (have_format) fail_byte(pos, "duplicate format line");
                 if (w.size() != 3) fail_byte(pos, "malformed format line");
-                if (w[1] == "ascii") format_ = Format::Ascii;
-                else if (w[1] == "binary_little_endian") format_ = Format::BinaryLittle;
-                else if (w[1] == "binary_big_endian") format_ = Format::BinaryBig;
-                else fail_byte(pos, "unknown format " + quoted(w[1]));
+                if (w[1] == "ascii")
+                    format_ = Format::Ascii;
+                else if (w[1] == "binary_little_endian")
+                    format_ = Format::BinaryLittle;
+                else if (w[1] == "binary_big_endian")
+                    format_ = Format::BinaryBig;
+                else
+                    fail_byte(pos, "unknown format " + quoted(w[1]));
                 if (w[2] != "1.0" && w[2] != "1")
                     fail_byte(pos, "unsupported PLY version " + quoted(w[2]) + " (expected 1.0)");
                 have_format = true;
@@ -449,7 +501,8 @@ private:
                         fail_byte(pos, "unknown type " + quoted(w[2]));
                     if (!parse_type(w[3], p.type)) fail_byte(pos, "unknown type " + quoted(w[3]));
                     if (!is_integer(p.count_type))
-                        fail_byte(pos, "list count type " + quoted(w[2]) + " is not an integer type");
+                        fail_byte(pos,
+                                  "list count type " + quoted(w[2]) + " is not an integer type");
                     p.is_list = true;
                     p.name = std::string(w[4]);
                 } else {
@@ -478,9 +531,12 @@ private:
         bool seen[3] = {false, false, false};
         for (Property& p : ve.props) {
             int axis = -1;
-            if (p.name == "x") axis = 0;
-            else if (p.name == "y") axis = 1;
-            else if (p.name == "z") axis = 2;
+            if (p.name == "x")
+                axis = 0;
+            else if (p.name == "y")
+                axis = 1;
+            else if (p.name == "z")
+                axis = 2;
             if (axis < 0) continue;
             if (p.is_list) fail_byte(ve.offset, "vertex property " + quoted(p.name) + " is a list");
             if (seen[axis]) fail_byte(ve.offset, "duplicate vertex property " + quoted(p.name));
@@ -490,8 +546,8 @@ private:
         static const char* const axis_names[3] = {"x", "y", "z"};
         for (int a = 0; a < 3; ++a)
             if (!seen[a])
-                fail_byte(ve.offset, std::string("element 'vertex' has no property '") +
-                                         axis_names[a] + "'");
+                fail_byte(ve.offset,
+                          std::string("element 'vertex' has no property '") + axis_names[a] + "'");
         vertex_count_ = ve.count;
 
         if (face_el_ == kNone) return;  // a point set: no triangles
@@ -499,10 +555,12 @@ private:
         Property* list = nullptr;
         for (Property& p : fe.props) {
             if (p.name != "vertex_indices" && p.name != "vertex_index") continue;
-            if (!p.is_list) fail_byte(fe.offset, "face property " + quoted(p.name) + " is not a list");
+            if (!p.is_list)
+                fail_byte(fe.offset, "face property " + quoted(p.name) + " is not a list");
             if (list) fail_byte(fe.offset, "element 'face' has more than one vertex index list");
             if (!is_integer(p.type))
-                fail_byte(fe.offset, "face index type of " + quoted(p.name) + " is not an integer type");
+                fail_byte(fe.offset,
+                          "face index type of " + quoted(p.name) + " is not an integer type");
             list = &p;
         }
         if (!list)
@@ -532,31 +590,35 @@ private:
             }
             needed = add_sat(needed, mul_sat(el.count, rec));
             if (needed > available)
-                fail_byte(el.offset,
-                          "element '" + el.name + "' declares " + std::to_string(el.count) +
-                              " records, more than the file can hold (this and the elements"
-                              " before it need at least " +
-                              (needed == std::numeric_limits<uint64_t>::max()
-                                   ? std::string("2^64")
-                                   : std::to_string(needed)) +
-                              " bytes, " + std::to_string(body) +
-                              " bytes follow the header; truncated file or bad count)");
+                fail_byte(
+                    el.offset,
+                    "element '" + el.name + "' declares " + std::to_string(el.count) +
+                        " records, more than the file can hold (this and the elements"
+                        " before it need at least " +
+                        (needed == std::numeric_limits<uint64_t>::max() ? std::string("2^64")
+                                                                        : std::to_string(needed)) +
+                        " bytes, " + std::to_string(body) +
+                        " bytes follow the header; truncated file or bad count)");
         }
     }
 
     // -- binary body ---------------------------------------------------------------
 
     template <bool Swap>
-    void read_binary(PlyMesh& mesh) {
+    void read_binary(PlyMesh& mesh, TriangleSink& tris) {
         size_t pos = body_offset_;
         for (size_t e = 0; e < elements_.size(); ++e) {
-            if (e == vertex_el_) pos = binary_vertices<Swap>(elements_[e], pos, mesh);
-            else if (e == face_el_) pos = binary_faces<Swap>(elements_[e], pos, mesh);
-            else pos = binary_skip<Swap>(elements_[e], pos);
+            if (e == vertex_el_)
+                pos = binary_vertices<Swap>(elements_[e], pos, mesh);
+            else if (e == face_el_)
+                pos = binary_faces<Swap>(elements_[e], pos, mesh, tris);
+            else
+                pos = binary_skip<Swap>(elements_[e], pos);
         }
     }
 
-    [[noreturn]] RT_PLY_COLD void fail_nonfinite(size_t offset, const Element& el, uint64_t rec) const {
+    [[noreturn]] RT_PLY_COLD void fail_nonfinite(size_t offset, const Element& el,
+                                                 uint64_t rec) const {
         fail_byte(offset, "non-finite coordinate (NaN or infinity) in " + record_text(el, rec));
     }
 
@@ -627,8 +689,9 @@ private:
                     const size_t cs = type_size(pr.count_type);
                     if (static_cast<size_t>(end - p) < cs) fail_eof(p - data_, el, i);
                     const int64_t n = load_int<Swap>(p, pr.count_type);
-                    if (n < 0) fail_byte(p - data_, "negative list count " + std::to_string(n) +
-                                                        " in " + record_text(el, i));
+                    if (n < 0)
+                        fail_byte(p - data_, "negative list count " + std::to_string(n) + " in " +
+                                                 record_text(el, i));
                     p += cs;
                     const uint64_t bytes = static_cast<uint64_t>(n) * type_size(pr.type);
                     if (static_cast<uint64_t>(end - p) < bytes) fail_eof(p - data_, el, i);
@@ -651,8 +714,8 @@ private:
     // One face record in any layout, starting at p; returns the end of the record.
     // Polygons are fan-split straight into the output.
     template <bool Swap>
-    const unsigned char* binary_face_record(const Element& el, uint64_t rec,
-                                            const unsigned char* p, PlyMesh& mesh) const {
+    const unsigned char* binary_face_record(const Element& el, uint64_t rec, const unsigned char* p,
+                                            PlyMesh& mesh, TriangleSink& tris) const {
         const unsigned char* const end = data_ + size_;
         for (const Property& pr : el.props) {
             if (!pr.is_list) {
@@ -669,7 +732,8 @@ private:
                                          record_text(el, rec));
             if (pr.role == Role::Indices && n < 3)
                 fail_byte(p - data_, "face with " + std::to_string(n) +
-                                         " vertices (at least 3 needed) in " + record_text(el, rec));
+                                         " vertices (at least 3 needed) in " +
+                                         record_text(el, rec));
             p += cs;
             const size_t isz = type_size(pr.type);
             const uint64_t bytes = static_cast<uint64_t>(n) * isz;  // n < 2^32, no overflow
@@ -682,15 +746,13 @@ private:
             for (int64_t k = 0; k < n; ++k, p += isz) {
                 const int64_t v = load_int<Swap>(p, pr.type);
                 if (static_cast<uint64_t>(v) >= vertex_count_)  // negative -> huge
-                    fail_byte(p - data_, bad_index_text(v, vertex_count_) + " in " +
-                                             record_text(el, rec));
+                    fail_byte(p - data_,
+                              bad_index_text(v, vertex_count_) + " in " + record_text(el, rec));
                 const uint32_t u = static_cast<uint32_t>(v);
                 if (k == 0) {
                     first = u;
                 } else if (k >= 2) {
-                    mesh.indices.push_back(first);
-                    mesh.indices.push_back(prev);
-                    mesh.indices.push_back(u);
+                    tris.put(first, prev, u);
                 }
                 prev = u;
             }
@@ -703,39 +765,48 @@ private:
     // count and 32-bit indices. Triangles take the fast path; anything else in the
     // same file (quads, errors) goes through binary_face_record.
     template <bool Swap, typename Index>
-    size_t faces_u8_count(const Element& el, size_t pos, PlyMesh& mesh) const {
+    size_t faces_u8_count(const Element& el, size_t pos, PlyMesh& mesh, TriangleSink& tris) const {
         const unsigned char* p = data_ + pos;
         const unsigned char* const end = data_ + size_;
         constexpr size_t kTri = 1 + 3 * sizeof(Index);
         const uint64_t nv = vertex_count_;
-        std::vector<uint32_t>& idx = mesh.indices;
+        uint32_t* out = tris.cursor();
+        uint32_t* out_end = tris.limit();
         for (uint64_t f = 0; f < el.count; ++f) {
-            if (static_cast<size_t>(end - p) >= kTri && p[0] == 3) {
+            if (static_cast<size_t>(end - p) >= kTri && p[0] == 3 && out_end - out >= 3) {
                 const int64_t a = load<Index, Swap>(p + 1);
                 const int64_t b = load<Index, Swap>(p + 1 + sizeof(Index));
                 const int64_t c = load<Index, Swap>(p + 1 + 2 * sizeof(Index));
                 if (static_cast<uint64_t>(a) < nv && static_cast<uint64_t>(b) < nv &&
                     static_cast<uint64_t>(c) < nv) {
-                    idx.push_back(static_cast<uint32_t>(a));
-                    idx.push_back(static_cast<uint32_t>(b));
-                    idx.push_back(static_cast<uint32_t>(c));
+                    out[0] = static_cast<uint32_t>(a);
+                    out[1] = static_cast<uint32_t>(b);
+                    out[2] = static_cast<uint32_t>(c);
+                    out += 3;
                     p += kTri;
                     continue;
                 }
             }
-            p = binary_face_record<Swap>(el, f, p, mesh);  // slow path also reports errors
+            // Anything else (polygons, full output, errors) takes the general path.
+            tris.set_cursor(out);
+            p = binary_face_record<Swap>(el, f, p, mesh, tris);
+            out = tris.cursor();
+            out_end = tris.limit();
         }
+        tris.set_cursor(out);
         return static_cast<size_t>(p - data_);
     }
 
     template <bool Swap>
-    size_t binary_faces(const Element& el, size_t pos, PlyMesh& mesh) const {
+    size_t binary_faces(const Element& el, size_t pos, PlyMesh& mesh, TriangleSink& tris) const {
         if (el.props.size() == 1 && el.props[0].count_type == Type::U8) {
-            if (el.props[0].type == Type::I32) return faces_u8_count<Swap, int32_t>(el, pos, mesh);
-            if (el.props[0].type == Type::U32) return faces_u8_count<Swap, uint32_t>(el, pos, mesh);
+            if (el.props[0].type == Type::I32)
+                return faces_u8_count<Swap, int32_t>(el, pos, mesh, tris);
+            if (el.props[0].type == Type::U32)
+                return faces_u8_count<Swap, uint32_t>(el, pos, mesh, tris);
         }
         const unsigned char* p = data_ + pos;
-        for (uint64_t f = 0; f < el.count; ++f) p = binary_face_record<Swap>(el, f, p, mesh);
+        for (uint64_t f = 0; f < el.count; ++f) p = binary_face_record<Swap>(el, f, p, mesh, tris);
         return static_cast<size_t>(p - data_);
     }
 
@@ -822,7 +893,7 @@ private:
         return v;
     }
 
-    void read_ascii(PlyMesh& mesh) {
+    void read_ascii(PlyMesh& mesh, TriangleSink& tris) {
         AsciiCursor c{reinterpret_cast<const char*>(data_ + body_offset_),
                       reinterpret_cast<const char*>(data_ + size_), body_line_};
         for (size_t e = 0; e < elements_.size(); ++e) {
@@ -865,9 +936,7 @@ private:
                         if (k == 0) {
                             first = u;
                         } else if (k >= 2) {
-                            mesh.indices.push_back(first);
-                            mesh.indices.push_back(prev);
-                            mesh.indices.push_back(u);
+                            tris.put(first, prev, u);
                         }
                         prev = u;
                     }
