@@ -28,16 +28,27 @@ else
   BUILD := build/double
 endif
 
-LIB_SRC  := $(filter-out src/main.cpp src/image/stb_impl.cpp,$(shell find src -name '*.cpp' | sort)) $(STB_IMPL)
+# Every src/**/*.cpp is library code except program entry points (main.cpp, *_main.cpp).
+LIB_SRC  := $(filter-out src/main.cpp %_main.cpp src/image/stb_impl.cpp,$(shell find src -name '*.cpp' | sort)) $(STB_IMPL)
 LIB_OBJ  := $(LIB_SRC:%.cpp=$(BUILD)/%.o)
-TEST_SRC := $(shell find tests -name '*.cpp' 2>/dev/null | sort)
+# The test binary is built from tests/*.cpp only; subfolders (fuzz targets, benchmarks) have their own rules.
+TEST_SRC := $(sort $(wildcard tests/*.cpp))
 TEST_OBJ := $(TEST_SRC:%.cpp=$(BUILD)/%.o)
 
 .PHONY: all test unit clean
 all: raytracer
 
-raytracer: $(BUILD)/src/main.o $(BUILD)/librt.a
-	$(CXX) $(CXXFLAGS) -o $@ $^ $(LDLIBS)
+# build/precision names the precision ./raytracer was last linked with; it changes
+# (and forces a relink) only when PRECISION does.
+build/precision: FORCE
+	@mkdir -p build
+	@echo '$(BUILD)' | cmp -s - $@ || echo '$(BUILD)' > $@
+
+raytracer: $(BUILD)/src/main.o $(BUILD)/librt.a build/precision
+	$(CXX) $(CXXFLAGS) -o $@ $(filter-out build/precision,$^) $(LDLIBS)
+
+.PHONY: FORCE
+FORCE:
 
 $(BUILD)/librt.a: $(LIB_OBJ)
 	@rm -f $@
@@ -57,5 +68,8 @@ test: raytracer $(BUILD)/rt_tests
 
 clean:
 	rm -rf build raytracer
+
+# Further targets (benchmarks, sanitizers, fuzzing, converters) live in mk/*.mk.
+-include $(sort $(wildcard mk/*.mk))
 
 -include $(LIB_OBJ:.o=.d) $(TEST_OBJ:.o=.d) $(BUILD)/src/main.d

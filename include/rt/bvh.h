@@ -10,7 +10,7 @@
 namespace rt {
 
 struct Aabb {
-    Vec3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    Vec3 lo{Real(HUGE_VAL), Real(HUGE_VAL), Real(HUGE_VAL)}, hi{-Real(HUGE_VAL), -Real(HUGE_VAL), -Real(HUGE_VAL)};
     void extend(Vec3 p) { lo = vmin(lo, p); hi = vmax(hi, p); }
     void extend(const Aabb& b) { lo = vmin(lo, b.lo); hi = vmax(hi, b.hi); }
     Vec3 centre() const { return (lo + hi) * Real(0.5); }

@@ -50,11 +50,14 @@ inline bool intersect_triangle(const RayPre& p, Vec3 a, Vec3 b, Vec3 c, Real tmi
     const Real det = u + v + ww;
     if (det == 0) return false;
     const Real tz = p.sz * (u * A[p.kz] + v * B[p.kz] + ww * C[p.kz]);
-    // t = tz / det must lie in (tmin, tmax); compare without dividing first.
-    if (det > 0 ? (tz <= tmin * det || tz >= tmax * det) : (tz >= tmin * det || tz <= tmax * det))
-        return false;
+    // Reject hits behind the origin before dividing (t has the sign of tz * det).
+    if (det > 0 ? tz <= 0 : tz >= 0) return false;
     const Real inv = Real(1) / det;
-    t = tz * inv;
+    // The range is checked on the t we return, so a caller that asks again with
+    // tmax = nextafter(t) gets the same hit (the closest-hit tie-break relies on it).
+    const Real tt = tz * inv;
+    if (!(tt > tmin && tt < tmax)) return false;
+    t = tt;
     w[0] = u * inv;
     w[1] = v * inv;
     w[2] = ww * inv;

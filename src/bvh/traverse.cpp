@@ -9,6 +9,7 @@ namespace rt {
 namespace {
 
 constexpr int kStackSize = 128;  // the builder bounds depth to well below this
+constexpr Real kTieSlack = 1 + 64 * std::numeric_limits<Real>::epsilon();
 
 // Widening of the exit distance that makes the slab test conservative despite
 // rounding in (bound - org) * inv_dir (pbrt-v3 section 3.9.2: 1 + 2 gamma(3)).
@@ -52,7 +53,7 @@ bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
     bool found = false;
     Real best_t = tmax;
     uint32_t best_id = ~0u;  // global id: BVH primitive id, then planes after them
-    Real w[3];
+    Real w[3] = {0, 0, 0};  // spheres leave them untouched
     auto consider = [&](uint32_t gid, Real t) {
         // Inclusive bound plus an id tie-break: equal t resolves to the lower id.
         if (t < best_t || (t == best_t && gid < best_id)) {
@@ -62,8 +63,12 @@ bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
             found = true;
         }
     };
-    // tmax for tests is inclusive of best_t so ties can be compared by id.
+    // Primitive tests accept t <= best_t, so ties reach consider() and are settled by id.
     auto limit = [&]() { return found ? std::nextafter(best_t, Real(HUGE_VAL)) : tmax; };
+    // Boxes get more slack: the entry distance of a flat box around a primitive hit at
+    // exactly best_t can round a few ulps above it (kTieSlack covers the error of both
+    // the slab distances and the triangle's t).
+    auto box_limit = [&]() { return found ? best_t * kTieSlack : tmax; };
 
     if (!s.bvh.nodes.empty()) {
         uint32_t stack[kStackSize];
@@ -79,7 +84,7 @@ bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
                     if (hit_prim<kCull>(s, p, id, tmin, limit(), t, w)) consider(id, t);
                 }
             } else {
-                const Real lim = limit();
+                const Real lim = box_limit();
                 const Real tl = box_entry(s.bvh.nodes[n.first], p, tmin, lim);
                 const Real tr = box_entry(s.bvh.nodes[n.first + 1], p, tmin, lim);
                 if (tl != HUGE_VAL && tr != HUGE_VAL) {
@@ -136,7 +141,7 @@ bool any_hit(const Scene& s, const Ray& ray, Real tmin, Real tmax) {
     int sp = 0;
     uint32_t node = 0;
     if (box_entry(s.bvh.nodes[0], p, tmin, tmax) == HUGE_VAL) return false;
-    Real w[3];
+    Real w[3] = {0, 0, 0};  // spheres leave them untouched
     for (;;) {
         const BvhNode& n = s.bvh.nodes[node];
         if (n.count > 0) {
