@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rt/error.h"
@@ -117,10 +118,10 @@ bool run_scene(const std::string& scene_path, const Options& o) {
     rt::Scene scene;
     double load_s = 0;
     try {
-        const rt::SceneDesc desc = rt::load_scene(scene_path);
+        rt::SceneDesc desc = rt::load_scene(scene_path);
         if (!o.quiet)
             for (const std::string& w : desc.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-        scene = rt::build_scene(desc);
+        scene = rt::build_scene(std::move(desc));
         load_s = seconds_since(t0) - scene.build_seconds;
         if (scene.degenerate_triangles > 0 && !o.quiet)
             std::fprintf(stderr, "warning: %s: skipped %zu degenerate triangle%s\n", scene_path.c_str(),
@@ -130,6 +131,10 @@ bool run_scene(const std::string& scene_path, const Options& o) {
         return false;
     } catch (const std::bad_alloc&) {
         std::fprintf(stderr, "%s: out of memory while loading\n", scene_path.c_str());
+        return false;
+    } catch (const std::exception& e) {
+        // Not expected (every bad input is an InputError); still one line, no crash.
+        std::fprintf(stderr, "%s: cannot load: %s\n", scene_path.c_str(), e.what());
         return false;
     }
 
@@ -155,6 +160,11 @@ bool run_scene(const std::string& scene_path, const Options& o) {
         } catch (const std::bad_alloc&) {
             std::fprintf(stderr, "%s: camera %zu: out of memory rendering %s\n", scene_path.c_str(), c + 1,
                          out.c_str());
+            ok = false;
+        } catch (const std::exception& e) {
+            // E.g. std::system_error when no thread can be started.
+            std::fprintf(stderr, "%s: camera %zu: cannot render %s: %s\n", scene_path.c_str(), c + 1, out.c_str(),
+                         e.what());
             ok = false;
         }
     }

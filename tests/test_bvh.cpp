@@ -64,7 +64,7 @@ Answer brute_closest(const rt::Scene& s, const rt::Ray& r, Real tmin, Real tmax,
     const rt::RayPre p = rt::prepare(r);
     uint32_t gid = 0;
     for (size_t i = 0; i < s.triangles.size(); ++i, ++gid) {
-        if (cull && rt::dot(r.dir, s.face_normals[i]) > 0) continue;
+        if (cull && rt::dot(r.dir, s.face_normal(static_cast<uint32_t>(i))) > 0) continue;
         const rt::Triangle& tri = s.triangles[i];
         Real t, w[3];
         if (rt::intersect_triangle(p, s.positions[tri.v[0]], s.positions[tri.v[1]], s.positions[tri.v[2]], tmin, tmax,
@@ -198,7 +198,8 @@ void check_structure(const rt::Scene& s) {
     }
     for (size_t i = 0; i < n; ++i) ASSERT_EQ(seen[i], 1) << "primitive " << i;
 
-    // Walk the tree: each node reached once, leaves cover bvh.prims exactly once, boxes nest.
+    // Walk the 4-wide tree: each node reached once, leaves cover bvh.prims exactly once,
+    // each slot's box contains its primitives or its child node's slot boxes.
     std::vector<int> reached(bvh.nodes.size(), 0), covered(n, 0);
     struct Item {
         uint32_t node;
@@ -214,26 +215,38 @@ void check_structure(const rt::Scene& s) {
         ASSERT_EQ(reached[it.node]++, 0) << "node " << it.node << " reached twice";
         levels = std::max(levels, it.level);
         ASSERT_LE(it.level, 64) << "tree too deep";
-        const rt::BvhNode& nd = bvh.nodes[it.node];
-        for (int a = 0; a < 3; ++a) ASSERT_LE(nd.lo[a], nd.hi[a]) << "inverted box at node " << it.node;
-        if (nd.count > 0) {
-            ASSERT_LE(size_t(nd.first) + nd.count, n);
-            for (uint32_t i = nd.first; i < nd.first + nd.count; ++i) {
-                ++covered[i];
-                const rt::Aabb b = prim_bounds(s, bvh.prims[i]);
-                for (int a = 0; a < 3; ++a)
-                    if (!(Real(nd.lo[a]) <= b.lo[a] && b.hi[a] <= Real(nd.hi[a]))) ++bad_boxes;
+        const rt::Bvh4Node& nd = bvh.nodes[it.node];
+        int used = 0;
+        for (int k = 0; k < 4; ++k) {
+            if (nd.child[k] == rt::Bvh4Node::kEmpty) {
+                EXPECT_EQ(nd.count[k], 0) << "empty slot with primitives at node " << it.node;
+                continue;
             }
-        } else {
-            ASSERT_LT(size_t(nd.first) + 1, bvh.nodes.size()) << "child index out of range at node " << it.node;
-            ASSERT_LT(nd.axis, 3) << "split axis at node " << it.node;
-            for (uint32_t c = nd.first; c <= nd.first + 1; ++c) {
-                const rt::BvhNode& ch = bvh.nodes[c];
-                for (int a = 0; a < 3; ++a)
-                    if (!(nd.lo[a] <= ch.lo[a] && ch.hi[a] <= nd.hi[a])) ++bad_boxes;
+            ++used;
+            for (int a = 0; a < 3; ++a) ASSERT_LE(nd.lo[a][k], nd.hi[a][k]) << "inverted box at node " << it.node;
+            if (nd.is_leaf(k)) {
+                const uint32_t first = ~static_cast<uint32_t>(nd.child[k]);
+                ASSERT_GT(nd.count[k], 0) << "empty leaf at node " << it.node;
+                ASSERT_LE(size_t(first) + nd.count[k], n);
+                for (uint32_t i = first; i < first + nd.count[k]; ++i) {
+                    ++covered[i];
+                    const rt::Aabb b = prim_bounds(s, bvh.prims[i]);
+                    for (int a = 0; a < 3; ++a)
+                        if (!(Real(nd.lo[a][k]) <= b.lo[a] && b.hi[a] <= Real(nd.hi[a][k]))) ++bad_boxes;
+                }
+            } else {
+                const uint32_t c = static_cast<uint32_t>(nd.child[k]);
+                ASSERT_LT(c, bvh.nodes.size()) << "child index out of range at node " << it.node;
+                const rt::Bvh4Node& ch = bvh.nodes[c];
+                for (int j = 0; j < 4; ++j) {
+                    if (ch.child[j] == rt::Bvh4Node::kEmpty) continue;
+                    for (int a = 0; a < 3; ++a)
+                        if (!(nd.lo[a][k] <= ch.lo[a][j] && ch.hi[a][j] <= nd.hi[a][k])) ++bad_boxes;
+                }
                 stack.push_back({c, it.level + 1});
             }
         }
+        EXPECT_GE(used, it.node == 0 ? 1 : 2) << "node " << it.node << " has too few children";
     }
     EXPECT_EQ(bad_boxes, 0u) << "boxes that do not contain their children or primitives";
     for (size_t i = 0; i < n; ++i) ASSERT_EQ(covered[i], 1) << "bvh.prims[" << i << "] in " << covered[i] << " leaves";

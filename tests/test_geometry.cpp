@@ -470,7 +470,7 @@ TEST(GeometryScene, CullingIgnoresBackFacesOnly) {
     d.meshes.push_back(m);
     const rt::Scene s = rt::build_scene(d);
     ASSERT_EQ(s.triangles.size(), 1u);
-    EXPECT_NEAR(s.face_normals[0].z, 1, kTol);
+    EXPECT_NEAR(s.face_normal(0).z, 1, kTol);
     rt::Hit h;
     const rt::Ray down{{0.25, 0.25, 1}, {0, 0, -1}}, up{{0.25, 0.25, -1}, {0, 0, 1}};
     EXPECT_TRUE(rt::closest_hit(s, down, 0, HUGE_VAL, true, h));   // front face

@@ -1,6 +1,8 @@
-// A binary BVH in one flat array of 32-byte nodes, built with binned SAH.
-// Bounds are stored as float, rounded outwards, so every box contains its
-// primitives exactly even when Real is double.
+// A 4-wide BVH in one flat array of 128-byte nodes. It is built as a binary
+// binned-SAH tree (bvh_build.cpp), then collapsed to four children per node so
+// that one SIMD box test serves four children. Bounds are stored as float,
+// rounded outwards, so every box contains its primitives exactly even when
+// Real is double; the box test itself runs in double (traverse.cpp).
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -9,33 +11,50 @@
 
 namespace rt {
 
+// An axis-aligned box in Real precision.
 struct Aabb {
     Vec3 lo{Real(HUGE_VAL), Real(HUGE_VAL), Real(HUGE_VAL)}, hi{-Real(HUGE_VAL), -Real(HUGE_VAL), -Real(HUGE_VAL)};
     void extend(Vec3 p) { lo = vmin(lo, p); hi = vmax(hi, p); }
     void extend(const Aabb& b) { lo = vmin(lo, b.lo); hi = vmax(hi, b.hi); }
-    Vec3 centre() const { return (lo + hi) * Real(0.5); }
-    Real area() const {
-        Vec3 e = hi - lo;
-        return e.x < 0 ? 0 : 2 * (e.x * e.y + e.y * e.z + e.z * e.x);
-    }
 };
 
-struct BvhNode {
+// Primitive bounds handed to the builder (float, already rounded outwards).
+// The builder sorts these in place; `id` is set by Bvh::build.
+struct BuildBox {
     float lo[3];
-    uint32_t first;  // leaf: first index into Bvh::prims; interior: index of left child (right = first + 1)
+    uint32_t id;
     float hi[3];
-    uint16_t count;  // leaf: number of primitives (> 0); interior: 0
-    uint16_t axis;   // interior: split axis, for near-child-first traversal
+    uint32_t unused;
 };
-static_assert(sizeof(BvhNode) == 32, "BvhNode must stay 32 bytes");
+
+// Rounds a Real bound outwards to float.
+float round_down_to_float(Real x);
+float round_up_to_float(Real x);
+
+struct alignas(64) Bvh4Node {
+    // Child boxes, structure of arrays: lo[axis][child], hi[axis][child].
+    // Empty slots hold lo = +inf, hi = -inf and are never entered.
+    float lo[3][4];
+    float hi[3][4];
+    // child[i] >= 0: index of an inner node. child[i] < 0: a leaf holding
+    // prims[first .. first + count) with first = ~child[i] and count = count[i].
+    int32_t child[4];
+    uint16_t count[4];
+    uint8_t pad[8];
+
+    static constexpr int32_t kEmpty = INT32_MIN;  // an unused slot (count 0)
+    bool is_leaf(int i) const { return child[i] < 0; }
+};
+static_assert(sizeof(Bvh4Node) == 128, "Bvh4Node must stay two cache lines");
 
 struct Bvh {
-    std::vector<BvhNode> nodes;   // nodes[0] is the root (absent when there are no primitives)
+    std::vector<Bvh4Node> nodes;  // nodes[0] is the root (absent when there are no primitives)
     std::vector<uint32_t> prims;  // primitive ids in leaf order
-    int depth = 0;
+    BuildBox root_box{};          // bounds of everything
+    int depth = 0;                // of the 4-wide tree, root = 1
 
-    // Builds over `bounds[i]` (one box per primitive id i).
-    void build(const std::vector<Aabb>& bounds);
+    // Builds over `boxes[i]` (one box per primitive id i); frees `boxes`.
+    void build(std::vector<BuildBox>&& boxes);
 };
 
 }  // namespace rt

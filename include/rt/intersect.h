@@ -37,6 +37,10 @@ inline RayPre prepare(const Ray& r) {
 
 // Watertight ray/triangle test. On a hit in (tmin, tmax) returns true with the
 // distance t and the barycentric weights (w0, w1, w2) of a, b, c.
+// With kCull, triangles whose counter-clockwise front faces away from the ray
+// are ignored (spec 2.9): the edge functions are then all >= 0 exactly when
+// dot(dir, (b - a) x (c - a)) < 0, so culling costs nothing extra.
+template <bool kCull = false>
 inline bool intersect_triangle(const RayPre& p, Vec3 a, Vec3 b, Vec3 c, Real tmin, Real tmax,
                                Real& t, Real w[3]) {
     const Vec3 A = a - p.ray.org, B = b - p.ray.org, C = c - p.ray.org;
@@ -46,7 +50,8 @@ inline bool intersect_triangle(const RayPre& p, Vec3 a, Vec3 b, Vec3 c, Real tmi
     const Real u = cx * by - cy * bx;  // weight of a
     const Real v = ax * cy - ay * cx;  // weight of b
     const Real ww = bx * ay - by * ax;  // weight of c
-    if ((u < 0 || v < 0 || ww < 0) && (u > 0 || v > 0 || ww > 0)) return false;
+    if (kCull ? (u < 0 || v < 0 || ww < 0) : ((u < 0 || v < 0 || ww < 0) && (u > 0 || v > 0 || ww > 0)))
+        return false;
     const Real det = u + v + ww;
     if (det == 0) return false;
     const Real tz = p.sz * (u * A[p.kz] + v * B[p.kz] + ww * C[p.kz]);
@@ -108,6 +113,11 @@ struct Hit {
 bool closest_hit(const Scene& scene, const Ray& ray, Real tmin, Real tmax, bool cull, Hit& hit);
 
 // True when anything lies in (tmin, tmax); never culls (spec 2.9: shadow rays).
-bool any_hit(const Scene& scene, const Ray& ray, Real tmin, Real tmax);
+// `occluder`, when given, is a hint: a BVH primitive id (or kNoOccluder) tested
+// before the traversal, and on a BVH hit it receives the id that was found.
+// Neighbouring shadow rays are mostly blocked by the same primitive; the answer
+// never depends on the hint.
+constexpr uint32_t kNoOccluder = ~0u;
+bool any_hit(const Scene& scene, const Ray& ray, Real tmin, Real tmax, uint32_t* occluder = nullptr);
 
 }  // namespace rt

@@ -22,10 +22,11 @@ struct Material {
 };
 
 struct Triangle {
-    uint32_t v[3];      // into Scene::positions (and Scene::vertex_normals when smooth)
-    uint32_t material;
-    uint32_t smooth;    // 1: interpolate vertex normals; 0: flat
+    uint32_t v[3];            // into Scene::positions (and Scene::vertex_normals when smooth)
+    uint32_t material : 31;
+    uint32_t smooth : 1;      // 1: interpolate vertex normals; 0: flat
 };
+static_assert(sizeof(Triangle) == 16, "Triangle must stay 16 bytes");
 
 struct Sphere {
     Vec3 center;
@@ -55,7 +56,6 @@ struct Scene {
     std::vector<Vec3> positions;
     std::vector<Vec3> vertex_normals;  // area-weighted, per mesh; unit length or zero
     std::vector<Triangle> triangles;
-    std::vector<Vec3> face_normals;    // unit geometric normal per triangle, CCW front
     std::vector<Sphere> spheres;
     std::vector<Plane> planes;
 
@@ -64,11 +64,20 @@ struct Scene {
     size_t degenerate_triangles = 0;  // skipped at build time
 
     Real build_seconds = 0;  // BVH build time, for the per-image report line
+
+    // Unit geometric normal of triangle i, counter-clockwise front (spec 3, "Triangle").
+    Vec3 face_normal(uint32_t i) const {
+        const Triangle& t = triangles[i];
+        const Vec3 a = positions[t.v[0]];
+        return normalize(cross(positions[t.v[1]] - a, positions[t.v[2]] - a));
+    }
 };
 
 // Builds render data: copies vertices per mesh, computes face normals and
 // area-weighted vertex normals of smooth meshes, skips degenerate triangles
 // (spec 2.10) and builds the BVH.
 Scene build_scene(const SceneDesc& desc);
+// The same, releasing each mesh of `desc` as soon as it is copied (lower peak memory).
+Scene build_scene(SceneDesc&& desc);
 
 }  // namespace rt

@@ -1,5 +1,8 @@
 // Reflectance formulas (spec 2.6) and the Whitted integrator.
 #pragma once
+#include <cstdint>
+#include <vector>
+
 #include "rt/math.h"
 
 namespace rt {
@@ -30,7 +33,29 @@ struct TraceOptions {
     bool cull = true;
 };
 
+// Per-thread state that speeds up tracing without changing any result:
+// the last occluder found for each point light (see any_hit).
+struct TraceCache {
+    std::vector<uint32_t> last_occluder;
+};
+
 // Radiance (in 0..255 units, unclamped) arriving at the camera along a primary ray.
-Vec3 trace_primary(const Scene& scene, const Ray& ray, const TraceOptions& options);
+Vec3 trace_primary(const Scene& scene, const Ray& ray, const TraceOptions& options, TraceCache* cache = nullptr);
+
+// x^e for the Blinn-Phong lobe: whole exponents up to 1024 by repeated squaring
+// (exact to a few ulps, several times faster than std::pow), others by std::pow.
+inline Real phong_pow(Real x, Real e) {
+    if (e >= 0 && e <= 1024 && e == std::floor(e)) {
+        unsigned n = static_cast<unsigned>(e);
+        Real result = 1, base = x;
+        while (n) {
+            if (n & 1u) result *= base;
+            base *= base;
+            n >>= 1;
+        }
+        return result;
+    }
+    return std::pow(x, e);
+}
 
 }  // namespace rt

@@ -1,6 +1,12 @@
-// BVH traversal: near child first with a fixed stack; closest hit and any hit.
+// BVH traversal: closest hit (near child first, fixed stack) and any hit.
+// Four child boxes are tested at once, in double precision (AVX when the
+// compiler targets it, scalar otherwise), against float bounds rounded outwards.
 #include <algorithm>
 #include <limits>
+
+#if defined(__AVX__)
+#include <immintrin.h>
+#endif
 
 #include "rt/intersect.h"
 #include "rt/scene.h"
@@ -8,29 +14,70 @@
 namespace rt {
 namespace {
 
-constexpr int kStackSize = 128;  // the builder bounds depth to well below this
+constexpr int kStackSize = 256;  // 3 entries per level at most; the builder bounds depth to ~80
 constexpr Real kTieSlack = 1 + 64 * std::numeric_limits<Real>::epsilon();
 
 // Widening of the exit distance that makes the slab test conservative despite
 // rounding in (bound - org) * inv_dir (pbrt-v3 section 3.9.2: 1 + 2 gamma(3)).
-constexpr Real kSlabWiden = 1 + 2 * (3 * std::numeric_limits<Real>::epsilon() / 2) /
-                                    (1 - 3 * std::numeric_limits<Real>::epsilon() / 2);
-
-// Slab test against a float box; returns the entry distance or HUGE_VAL on a miss.
 // Flat boxes (axis-aligned walls) make the slabs meet at one t, so without the
 // widening a ray along a wall's edge could miss both walls.
-inline Real box_entry(const BvhNode& n, const RayPre& p, Real tmin, Real tmax) {
-    Real t0 = tmin, t1 = tmax;
+constexpr double kSlabWiden = 1 + 2 * (3 * std::numeric_limits<double>::epsilon() / 2) /
+                                      (1 - 3 * std::numeric_limits<double>::epsilon() / 2);
+
+// Per-ray data of the box test. For each axis the near plane is lo when the
+// direction is positive, so the entry is (near - org) * inv and the exit
+// (far - org) * inv; a 0 * inf = NaN (ray in a slab's boundary plane, parallel
+// to it) then falls out of the max/min below and leaves the interval open.
+struct BoxRay {
+    double org[3], inv[3];
+    int near_is_hi[3];
+};
+
+inline BoxRay box_ray(const RayPre& p) {
+    BoxRay b;
     for (int a = 0; a < 3; ++a) {
-        Real ta = (Real(n.lo[a]) - p.ray.org[a]) * p.inv_dir[a];
-        Real tb = (Real(n.hi[a]) - p.ray.org[a]) * p.inv_dir[a];
-        if (ta > tb) std::swap(ta, tb);
-        tb *= kSlabWiden;
-        // NaN (0 * inf, ray in the slab plane) leaves the interval unchanged.
-        t0 = ta > t0 ? ta : t0;
-        t1 = tb < t1 ? tb : t1;
+        b.org[a] = p.ray.org[a];
+        b.inv[a] = 1.0 / double(p.ray.dir[a]);
+        b.near_is_hi[a] = std::signbit(b.inv[a]) ? 1 : 0;
     }
-    return t0 <= t1 ? t0 : HUGE_VAL;
+    return b;
+}
+
+// Entry distances of the four children into `t` (HUGE_VAL for a miss), and a hit mask.
+inline int test4(const Bvh4Node& n, const BoxRay& r, double tmin, double tmax, double t[4]) {
+#if defined(__AVX__)
+    __m256d tnear = _mm256_set1_pd(tmin), tfar = _mm256_set1_pd(tmax);
+    for (int a = 0; a < 3; ++a) {
+        const float* nearp = r.near_is_hi[a] ? n.hi[a] : n.lo[a];
+        const float* farp = r.near_is_hi[a] ? n.lo[a] : n.hi[a];
+        const __m256d o = _mm256_set1_pd(r.org[a]), inv = _mm256_set1_pd(r.inv[a]);
+        const __m256d t0 = _mm256_mul_pd(_mm256_sub_pd(_mm256_cvtps_pd(_mm_load_ps(nearp)), o), inv);
+        const __m256d t1 = _mm256_mul_pd(_mm256_sub_pd(_mm256_cvtps_pd(_mm_load_ps(farp)), o), inv);
+        // max/min return their second operand when the first is NaN.
+        tnear = _mm256_max_pd(t0, tnear);
+        tfar = _mm256_min_pd(_mm256_mul_pd(t1, _mm256_set1_pd(kSlabWiden)), tfar);
+    }
+    const __m256d hit = _mm256_cmp_pd(tnear, tfar, _CMP_LE_OQ);
+    _mm256_storeu_pd(t, _mm256_blendv_pd(_mm256_set1_pd(HUGE_VAL), tnear, hit));
+    return _mm256_movemask_pd(hit);
+#else
+    int mask = 0;
+    for (int i = 0; i < 4; ++i) {
+        double tn = tmin, tf = tmax;
+        for (int a = 0; a < 3; ++a) {
+            const double nearv = r.near_is_hi[a] ? n.hi[a][i] : n.lo[a][i];
+            const double farv = r.near_is_hi[a] ? n.lo[a][i] : n.hi[a][i];
+            const double t0 = (nearv - r.org[a]) * r.inv[a];
+            const double t1 = (farv - r.org[a]) * r.inv[a] * kSlabWiden;
+            tn = t0 > tn ? t0 : tn;
+            tf = t1 < tf ? t1 : tf;
+        }
+        const bool h = tn <= tf;
+        t[i] = h ? tn : HUGE_VAL;
+        mask |= h ? 1 << i : 0;
+    }
+    return mask;
+#endif
 }
 
 // Tests one BVH primitive; returns true with t (and weights) on a hit in (tmin, tmax).
@@ -38,14 +85,19 @@ template <bool kCull>
 inline bool hit_prim(const Scene& s, const RayPre& p, uint32_t id, Real tmin, Real tmax, Real& t, Real w[3]) {
     const size_t ntri = s.triangles.size();
     if (id < ntri) {
-        if (kCull && dot(p.ray.dir, s.face_normals[id]) > 0) return false;
         const Triangle& tri = s.triangles[id];
-        return intersect_triangle(p, s.positions[tri.v[0]], s.positions[tri.v[1]], s.positions[tri.v[2]],
-                                  tmin, tmax, t, w);
+        return intersect_triangle<kCull>(p, s.positions[tri.v[0]], s.positions[tri.v[1]], s.positions[tri.v[2]],
+                                         tmin, tmax, t, w);
     }
     const Sphere& sp = s.spheres[id - ntri];
     return intersect_sphere(p.ray, sp.center, sp.radius, tmin, tmax, t);
 }
+
+struct StackEntry {
+    int32_t child;   // node index, or ~first for a leaf
+    uint16_t count;  // leaf size
+    double t;        // entry distance, to skip entries beyond the best hit
+};
 
 template <bool kCull>
 bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
@@ -55,11 +107,13 @@ bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
     uint32_t best_id = ~0u;  // global id: BVH primitive id, then planes after them
     Real w[3] = {0, 0, 0};  // spheres leave them untouched
     auto consider = [&](uint32_t gid, Real t) {
-        // Inclusive bound plus an id tie-break: equal t resolves to the lower id.
+        // Ties in t go to the lower id, so the answer does not depend on the BVH.
         if (t < best_t || (t == best_t && gid < best_id)) {
             best_t = t;
             best_id = gid;
-            hit.w[0] = w[0]; hit.w[1] = w[1]; hit.w[2] = w[2];
+            hit.w[0] = w[0];
+            hit.w[1] = w[1];
+            hit.w[2] = w[2];
             found = true;
         }
     };
@@ -68,40 +122,45 @@ bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
     // Boxes get more slack: the entry distance of a flat box around a primitive hit at
     // exactly best_t can round a few ulps above it (kTieSlack covers the error of both
     // the slab distances and the triangle's t).
-    auto box_limit = [&]() { return found ? best_t * kTieSlack : tmax; };
+    auto box_limit = [&]() { return found ? double(best_t * kTieSlack) : double(tmax); };
 
     if (!s.bvh.nodes.empty()) {
-        uint32_t stack[kStackSize];
+        const BoxRay br = box_ray(p);
+        StackEntry stack[kStackSize];
         int sp = 0;
-        uint32_t node = 0;
-        if (box_entry(s.bvh.nodes[0], p, tmin, tmax) == HUGE_VAL) goto planes;
-        for (;;) {
-            const BvhNode& n = s.bvh.nodes[node];
-            if (n.count > 0) {
-                for (uint32_t i = n.first, e = n.first + n.count; i < e; ++i) {
+        stack[sp++] = {0, 0, double(tmin)};
+        while (sp > 0) {
+            const StackEntry e = stack[--sp];
+            if (e.t > box_limit()) continue;
+            if (e.child < 0) {
+                for (uint32_t i = ~static_cast<uint32_t>(e.child), end = i + e.count; i < end; ++i) {
                     const uint32_t id = s.bvh.prims[i];
                     Real t;
                     if (hit_prim<kCull>(s, p, id, tmin, limit(), t, w)) consider(id, t);
                 }
-            } else {
-                const Real lim = box_limit();
-                const Real tl = box_entry(s.bvh.nodes[n.first], p, tmin, lim);
-                const Real tr = box_entry(s.bvh.nodes[n.first + 1], p, tmin, lim);
-                if (tl != HUGE_VAL && tr != HUGE_VAL) {
-                    const bool left_first = tl <= tr;
-                    stack[sp++] = left_first ? n.first + 1 : n.first;
-                    node = left_first ? n.first : n.first + 1;
-                    continue;
-                }
-                if (tl != HUGE_VAL) { node = n.first; continue; }
-                if (tr != HUGE_VAL) { node = n.first + 1; continue; }
+                continue;
             }
-            // Pop, skipping nodes now farther than the best hit.
-            if (sp == 0) break;
-            node = stack[--sp];
+            const Bvh4Node& n = s.bvh.nodes[e.child];
+            double t[4];
+            int mask = test4(n, br, double(tmin), box_limit(), t);
+            // Push hit children far to near, so the nearest is popped first.
+            int order[4], k = 0;
+            while (mask) {
+                const int i = __builtin_ctz(mask);
+                mask &= mask - 1;
+                int j = k++;
+                while (j > 0 && t[order[j - 1]] < t[i]) {
+                    order[j] = order[j - 1];
+                    --j;
+                }
+                order[j] = i;
+            }
+            for (int j = 0; j < k; ++j) {
+                const int i = order[j];
+                stack[sp++] = {n.child[i], n.count[i], t[i]};
+            }
         }
     }
-planes:
     const uint32_t base = static_cast<uint32_t>(s.triangles.size() + s.spheres.size());
     for (size_t i = 0; i < s.planes.size(); ++i) {
         Real t;
@@ -130,39 +189,48 @@ bool closest_hit(const Scene& scene, const Ray& ray, Real tmin, Real tmax, bool 
     return cull ? closest<true>(scene, ray, tmin, tmax, hit) : closest<false>(scene, ray, tmin, tmax, hit);
 }
 
-bool any_hit(const Scene& s, const Ray& ray, Real tmin, Real tmax) {
+bool any_hit(const Scene& s, const Ray& ray, Real tmin, Real tmax, uint32_t* occluder) {
     for (const Plane& pl : s.planes) {
         Real t;
         if (intersect_plane(ray, pl.point, pl.normal, tmin, tmax, t)) return true;
     }
     if (s.bvh.nodes.empty()) return false;
     const RayPre p = prepare(ray);
-    uint32_t stack[kStackSize];
-    int sp = 0;
-    uint32_t node = 0;
-    if (box_entry(s.bvh.nodes[0], p, tmin, tmax) == HUGE_VAL) return false;
-    Real w[3] = {0, 0, 0};  // spheres leave them untouched
-    for (;;) {
-        const BvhNode& n = s.bvh.nodes[node];
-        if (n.count > 0) {
-            for (uint32_t i = n.first, e = n.first + n.count; i < e; ++i) {
-                Real t;
-                if (hit_prim<false>(s, p, s.bvh.prims[i], tmin, tmax, t, w)) return true;
-            }
-        } else {
-            const bool l = box_entry(s.bvh.nodes[n.first], p, tmin, tmax) != HUGE_VAL;
-            const bool r = box_entry(s.bvh.nodes[n.first + 1], p, tmin, tmax) != HUGE_VAL;
-            if (l && r) {
-                stack[sp++] = n.first + 1;
-                node = n.first;
-                continue;
-            }
-            if (l) { node = n.first; continue; }
-            if (r) { node = n.first + 1; continue; }
-        }
-        if (sp == 0) return false;
-        node = stack[--sp];
+    Real w[3];
+    if (occluder && *occluder != kNoOccluder) {
+        Real t;
+        if (hit_prim<false>(s, p, *occluder, tmin, tmax, t, w)) return true;
     }
+    const BoxRay br = box_ray(p);
+    int32_t stack[kStackSize];
+    uint16_t counts[kStackSize];
+    int sp = 0;
+    stack[sp] = 0;
+    counts[sp++] = 0;
+    while (sp > 0) {
+        --sp;
+        const int32_t child = stack[sp];
+        if (child < 0) {
+            for (uint32_t i = ~static_cast<uint32_t>(child), end = i + counts[sp]; i < end; ++i) {
+                Real t;
+                if (hit_prim<false>(s, p, s.bvh.prims[i], tmin, tmax, t, w)) {
+                    if (occluder) *occluder = s.bvh.prims[i];
+                    return true;
+                }
+            }
+            continue;
+        }
+        const Bvh4Node& n = s.bvh.nodes[child];
+        double t[4];
+        int mask = test4(n, br, double(tmin), double(tmax), t);
+        while (mask) {
+            const int i = __builtin_ctz(mask);
+            mask &= mask - 1;
+            stack[sp] = n.child[i];
+            counts[sp++] = n.count[i];
+        }
+    }
+    return false;
 }
 
 }  // namespace rt

@@ -1,5 +1,6 @@
 // SceneDesc -> Scene: flat arrays, normals, BVH.
 #include <chrono>
+#include <utility>
 
 #include "rt/scene.h"
 
@@ -28,8 +29,8 @@ Material make_material(const MaterialDesc& d) {
 void add_mesh(Scene& s, const MeshDesc& m) {
     const uint32_t base = static_cast<uint32_t>(s.positions.size());
     s.positions.insert(s.positions.end(), m.positions.begin(), m.positions.end());
+    const bool smooth = m.shading == ShadingMode::Smooth;
     s.vertex_normals.resize(s.positions.size(), Vec3{});
-    const uint32_t smooth = m.shading == ShadingMode::Smooth ? 1 : 0;
     for (size_t f = 0; f + 2 < m.indices.size(); f += 3) {
         const uint32_t a = base + m.indices[f], b = base + m.indices[f + 1], c = base + m.indices[f + 2];
         const Vec3 n = cross(s.positions[b] - s.positions[a], s.positions[c] - s.positions[a]);
@@ -45,8 +46,13 @@ void add_mesh(Scene& s, const MeshDesc& m) {
             s.vertex_normals[b] += n;
             s.vertex_normals[c] += n;
         }
-        s.triangles.push_back({{a, b, c}, m.material, smooth});
-        s.face_normals.push_back(n / len);
+        Triangle t;
+        t.v[0] = a;
+        t.v[1] = b;
+        t.v[2] = c;
+        t.material = m.material;
+        t.smooth = smooth ? 1 : 0;
+        s.triangles.push_back(t);
     }
     if (smooth) {
         for (size_t i = base; i < s.positions.size(); ++i) {
@@ -56,9 +62,18 @@ void add_mesh(Scene& s, const MeshDesc& m) {
     }
 }
 
-}  // namespace
+BuildBox make_box(Vec3 lo, Vec3 hi) {
+    BuildBox b{};
+    for (int a = 0; a < 3; ++a) {
+        b.lo[a] = round_down_to_float(lo[a]);
+        b.hi[a] = round_up_to_float(hi[a]);
+    }
+    return b;
+}
 
-Scene build_scene(const SceneDesc& d) {
+// Builds everything; `release(i)` is called once mesh i has been copied.
+template <class Release>
+Scene build(const SceneDesc& d, Release release) {
     Scene s;
     s.path = d.path;
     s.background = d.background;
@@ -77,23 +92,42 @@ Scene build_scene(const SceneDesc& d) {
     s.positions.reserve(nvert);
     s.vertex_normals.reserve(nvert);
     s.triangles.reserve(ntri);
-    s.face_normals.reserve(ntri);
-    for (const MeshDesc& m : d.meshes) add_mesh(s, m);
+    for (size_t i = 0; i < d.meshes.size(); ++i) {
+        add_mesh(s, d.meshes[i]);
+        release(i);
+    }
+    s.triangles.shrink_to_fit();
     for (const SphereDesc& sp : d.spheres) s.spheres.push_back({sp.center, sp.radius, sp.material});
     for (const PlaneDesc& p : d.planes) s.planes.push_back({p.point, normalize(p.normal), p.material});
 
     const auto t0 = std::chrono::steady_clock::now();
-    std::vector<Aabb> bounds(s.triangles.size() + s.spheres.size());
-    for (size_t i = 0; i < s.triangles.size(); ++i)
-        for (uint32_t v : s.triangles[i].v) bounds[i].extend(s.positions[v]);
+    std::vector<BuildBox> boxes(s.triangles.size() + s.spheres.size());
+    for (size_t i = 0; i < s.triangles.size(); ++i) {
+        const Triangle& t = s.triangles[i];
+        const Vec3 a = s.positions[t.v[0]], b = s.positions[t.v[1]], c = s.positions[t.v[2]];
+        boxes[i] = make_box(vmin(a, vmin(b, c)), vmax(a, vmax(b, c)));
+    }
     for (size_t i = 0; i < s.spheres.size(); ++i) {
         const Sphere& sp = s.spheres[i];
         const Vec3 r{sp.radius, sp.radius, sp.radius};
-        bounds[s.triangles.size() + i] = Aabb{sp.center - r, sp.center + r};
+        boxes[s.triangles.size() + i] = make_box(sp.center - r, sp.center + r);
     }
-    s.bvh.build(bounds);
+    s.bvh.build(std::move(boxes));
     s.build_seconds = std::chrono::duration<Real>(std::chrono::steady_clock::now() - t0).count();
     return s;
+}
+
+}  // namespace
+
+Scene build_scene(const SceneDesc& d) {
+    return build(d, [](size_t) {});
+}
+
+Scene build_scene(SceneDesc&& d) {
+    return build(d, [&d](size_t i) {
+        std::vector<Vec3>().swap(d.meshes[i].positions);
+        std::vector<uint32_t>().swap(d.meshes[i].indices);
+    });
 }
 
 }  // namespace rt

@@ -25,12 +25,13 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
     const TraceOptions topt{options.cull};
 
     auto work = [&]() {
+        TraceCache cache;  // per thread
         for (int tile; (tile = next.fetch_add(1, std::memory_order_relaxed)) < tiles;) {
             const int x0 = (tile % tiles_x) * kTile, y0 = (tile / tiles_x) * kTile;
             const int x1 = std::min(x0 + kTile, cam.width), y1 = std::min(y0 + kTile, cam.height);
             for (int y = y0; y < y1; ++y) {
                 for (int x = x0; x < x1; ++x) {
-                    const Vec3 c = trace_primary(scene, cam.primary_ray(x, y), topt);
+                    const Vec3 c = trace_primary(scene, cam.primary_ray(x, y), topt, &cache);
                     uint8_t* px = &img.rgb[(static_cast<size_t>(y) * cam.width + x) * 3];
                     px[0] = quantize(c.x, options.rounding);
                     px[1] = quantize(c.y, options.rounding);

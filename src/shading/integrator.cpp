@@ -14,12 +14,14 @@ constexpr int kNoMedium = -1;
 struct Integrator {
     const Scene& s;
     TraceOptions opt;
+    TraceCache* cache;  // may be null
 
     // Ambient + Blinn-Phong diffuse and specular from every unshadowed point light.
     // `n` is the outward shading normal, also for surfaces hit from behind.
     Vec3 local(const Material& m, Vec3 p, Vec3 n, Vec3 to_eye) const {
         Vec3 c = m.ambient * s.ambient_light;
-        for (const PointLight& light : s.lights) {
+        for (size_t li = 0; li < s.lights.size(); ++li) {
+            const PointLight& light = s.lights[li];
             const Vec3 to_light = light.position - p;
             const Real d2 = dot(to_light, to_light);
             const Vec3 l = to_light / std::sqrt(d2);
@@ -31,11 +33,12 @@ struct Integrator {
             const Vec3 so = p + n * s.shadow_ray_epsilon;
             const Vec3 so_to_light = light.position - so;
             const Real dist = length(so_to_light);
-            if (any_hit(s, Ray{so, so_to_light / dist}, 0, dist)) continue;
+            uint32_t* hint = cache ? &cache->last_occluder[li] : nullptr;
+            if (any_hit(s, Ray{so, so_to_light / dist}, 0, dist, hint)) continue;
             const Vec3 e = light.intensity / d2;  // irradiance E = I / d^2 (spec 2.8)
             const Vec3 h = normalize(l + to_eye);
             const Real ndoth = std::fmax(Real(0), dot(n, h));
-            c += (m.diffuse * ndotl + m.specular * std::pow(ndoth, m.phong_exponent)) * e;
+            c += (m.diffuse * ndotl + m.specular * phong_pow(ndoth, m.phong_exponent)) * e;
         }
         return c;
     }
@@ -55,7 +58,7 @@ struct Integrator {
         switch (h.kind) {
             case HitKind::Triangle: {
                 const Triangle& tri = s.triangles[h.index];
-                ng = s.face_normals[h.index];
+                ng = s.face_normal(h.index);
                 ns = ng;
                 if (tri.smooth) {
                     const Vec3 n = s.vertex_normals[tri.v[0]] * h.w[0] + s.vertex_normals[tri.v[1]] * h.w[1] +
@@ -123,8 +126,10 @@ struct Integrator {
 
 }  // namespace
 
-Vec3 trace_primary(const Scene& scene, const Ray& ray, const TraceOptions& options) {
-    return Integrator{scene, options}.trace(ray, 0, kNoMedium, true);
+Vec3 trace_primary(const Scene& scene, const Ray& ray, const TraceOptions& options, TraceCache* cache) {
+    if (cache && cache->last_occluder.size() != scene.lights.size())
+        cache->last_occluder.assign(scene.lights.size(), kNoOccluder);
+    return Integrator{scene, options, cache}.trace(ray, 0, kNoMedium, true);
 }
 
 }  // namespace rt
