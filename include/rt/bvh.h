@@ -1,10 +1,11 @@
-// A 4-wide BVH in one flat array of 128-byte nodes. It is built as a binary
-// binned-SAH tree (bvh_build.cpp), then collapsed to four children per node so
-// that one SIMD box test serves four children. Bounds are stored as float,
+// A 4-wide BVH in one flat array of 128-byte nodes, built directly by binned
+// SAH (bvh_build.cpp): one SIMD box test serves four children. Bounds are stored as float,
 // rounded outwards, so every box contains its primitives exactly even when
 // Real is double; the box test itself runs in double (traverse.cpp).
 #pragma once
+#include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "rt/math.h"
@@ -47,8 +48,29 @@ struct alignas(64) Bvh4Node {
 };
 static_assert(sizeof(Bvh4Node) == 128, "Bvh4Node must stay two cache lines");
 
+// Fixed-capacity node storage: the builder reserves an upper bound of nodes
+// without touching the pages (so unused capacity costs no memory) and fills
+// them from several threads through an atomic counter.
+class NodeArray {
+public:
+    size_t size() const { return size_; }
+    bool empty() const { return size_ == 0; }
+    const Bvh4Node& operator[](size_t i) const { return data_[i]; }
+    Bvh4Node& operator[](size_t i) { return data_[i]; }
+    const Bvh4Node* begin() const { return data_.get(); }
+    const Bvh4Node* end() const { return data_.get() + size_; }
+    void clear() { data_.reset(); size_ = 0; }
+    // Storage for `capacity` nodes, uninitialised; then set_size(n) with n <= capacity.
+    void allocate(size_t capacity) { data_.reset(new Bvh4Node[capacity]); size_ = 0; }
+    void set_size(size_t n) { size_ = n; }
+
+private:
+    std::unique_ptr<Bvh4Node[]> data_;
+    size_t size_ = 0;
+};
+
 struct Bvh {
-    std::vector<Bvh4Node> nodes;  // nodes[0] is the root (absent when there are no primitives)
+    NodeArray nodes;              // nodes[0] is the root (absent when there are no primitives)
     std::vector<uint32_t> prims;  // primitive ids in leaf order
     BuildBox root_box{};          // bounds of everything
     int depth = 0;                // of the 4-wide tree, root = 1

@@ -1,12 +1,19 @@
-// BVH construction: a binary tree by binned SAH (Wald 2007), collapsed to a
-// 4-wide tree. At each node, centroids are binned along all three axes in one
-// pass into kBins bins and the plane with the lowest surface-area cost is
-// taken; a node that would cost more split than as a leaf becomes a leaf.
-// Primitive boxes are partitioned in place (streaming, no gathers), and large
-// subtrees are built on their own threads.
+// BVH construction by binned SAH (Wald 2007), building the 4-wide tree directly:
+// a node starts as one range of primitives and keeps splitting its largest
+// splittable child until it has four. A split bins the centroids along all three
+// axes in one pass (SIMD), takes the plane of lowest surface-area cost, and
+// partitions the range in place, accumulating both sides' bounds as it goes,
+// so each split reads the primitives twice. A child that would cost more split
+// than as a leaf becomes a leaf. Large subtrees are built on their own threads;
+// nodes come from one array through an atomic counter.
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <thread>
+
+#if defined(__SSE4_1__)
+#include <smmintrin.h>
+#endif
 
 #include "rt/bvh.h"
 
@@ -23,11 +30,17 @@ float round_up_to_float(Real x) {
 
 namespace {
 
-constexpr int kBins = 16;
+constexpr int kBins = 16;  // for large ranges; small ones use fewer (bins_for)
+
+// Bins for a range of `count` primitives: the per-split constant cost (clearing,
+// sweeping) dominates small ranges, where few bins already find the best plane.
+inline int bins_for(uint32_t count) {
+    return count >= 32 ? kBins : std::max(4, static_cast<int>(count / 2));
+}
 constexpr uint32_t kMaxLeaf = 8;     // a leaf never holds more, whatever SAH says
 constexpr float kTraversalCost = 1;  // relative to one primitive test
 constexpr int kSahDepthLimit = 48;   // beyond it, object-median splits bound the depth
-constexpr uint32_t kParallelMin = 1u << 14;  // smallest subtree worth a thread
+constexpr uint32_t kParallelMin = 1u << 15;  // smallest subtree worth a thread
 
 struct FBox {
     float lo[3] = {HUGE_VALF, HUGE_VALF, HUGE_VALF};
@@ -45,80 +58,75 @@ struct FBox {
     }
 };
 
-// Binary node of the intermediate tree.
-struct BNode {
-    FBox box;
-    uint32_t left = 0, right = 0;  // inner: child indices (same vector)
-    uint32_t first = 0, count = 0;  // leaf: range of refs (count > 0)
-};
-
 // Centroid doubled (lo + hi): binning only needs a consistent measure.
 inline float centre2(const BuildBox& b, int axis) { return b.lo[axis] + b.hi[axis]; }
 
+// A range of primitives with its bounds and the bounds of its centroids.
+struct Range {
+    uint32_t begin = 0, end = 0;
+    FBox box, cbox;
+    bool leaf = false;  // decided: stays a leaf
+    uint32_t count() const { return end - begin; }
+};
+
+void set_slot(Bvh4Node& n, int slot, const FBox& b) {
+    for (int a = 0; a < 3; ++a) {
+        n.lo[a][slot] = b.lo[a];
+        n.hi[a][slot] = b.hi[a];
+    }
+}
+
+// Four empty slots: boxes that no ray enters, no children.
+void clear_node(Bvh4Node& node) {
+    for (int i = 0; i < 4; ++i) {
+        set_slot(node, i, FBox());
+        node.child[i] = Bvh4Node::kEmpty;
+        node.count[i] = 0;
+    }
+    for (uint8_t& p : node.pad) p = 0;
+}
+
 struct Builder {
     BuildBox* refs;
-    unsigned threads_left;  // extra threads this subtree may still start
-    int max_depth = 0;
+    NodeArray& nodes;
+    std::atomic<uint32_t>& next_node;
+    std::atomic<int>& depth;
+    std::atomic<int>& spare_threads;
 
-    // Builds refs[begin, end) into `out`; returns the index of its root in `out`.
-    uint32_t build(std::vector<BNode>& out, uint32_t begin, uint32_t end, int depth) {
-        max_depth = std::max(max_depth, depth + 1);
-        FBox box, cbox;
-        for (uint32_t i = begin; i < end; ++i) {
-            box.extend(refs[i].lo, refs[i].hi);
-            const float c[3] = {centre2(refs[i], 0), centre2(refs[i], 1), centre2(refs[i], 2)};
-            cbox.extend(c, c);
-        }
-        const uint32_t index = static_cast<uint32_t>(out.size());
-        out.emplace_back();
-        out[index].box = box;
-        const uint32_t count = end - begin;
-        auto leaf = [&]() {
-            out[index].first = begin;
-            out[index].count = count;
-            return index;
-        };
-        if (count == 1) return leaf();
-
-        float extent[3], scale[3];
+    // Bins r's centroids along all axes; returns false when r should stay a leaf,
+    // otherwise the best axis and bin.
+    bool best_split(const Range& r, int level, int& axis_out, int& bin_out, float scale[3], int nb) const {
+        const uint32_t count = r.count();
+        float extent[3];
         for (int a = 0; a < 3; ++a) {
-            extent[a] = cbox.hi[a] - cbox.lo[a];
-            scale[a] = extent[a] > 0 ? float(kBins) / extent[a] : 0;
+            extent[a] = r.cbox.hi[a] - r.cbox.lo[a];
+            scale[a] = extent[a] > 0 ? float(nb) / extent[a] : 0;
         }
-        auto bin_of = [&](const BuildBox& r, int axis) {
-            const int b = static_cast<int>((centre2(r, axis) - cbox.lo[axis]) * scale[axis]);
-            return std::min(std::max(b, 0), kBins - 1);
-        };
-
-        int best_axis = -1, best_bin = 0;
-        float best_cost = HUGE_VALF;
-        if (depth < kSahDepthLimit) {
-            FBox bin_box[3][kBins];
-            uint32_t bin_count[3][kBins] = {};
-            for (uint32_t i = begin; i < end; ++i) {
-                for (int axis = 0; axis < 3; ++axis) {
-                    const int b = bin_of(refs[i], axis);
-                    ++bin_count[axis][b];
-                    bin_box[axis][b].extend(refs[i].lo, refs[i].hi);
-                }
-            }
+        if (count <= 1) return false;
+        axis_out = -1;
+        if (level < kSahDepthLimit) {
+            float best_cost = HUGE_VALF;
+            int best_axis = -1, best_bin = 0;
+            FBox bins[3][kBins];
+            uint32_t counts[3][kBins] = {};
+            bin_all(r, scale, nb, bins, counts);
             for (int axis = 0; axis < 3; ++axis) {
                 if (!(extent[axis] > 0)) continue;
                 float right_area[kBins];
                 uint32_t right_count[kBins];
                 FBox acc;
                 uint32_t n = 0;
-                for (int b = kBins - 1; b > 0; --b) {
-                    acc.extend(bin_box[axis][b]);
-                    n += bin_count[axis][b];
+                for (int b = nb - 1; b > 0; --b) {
+                    acc.extend(bins[axis][b]);
+                    n += counts[axis][b];
                     right_area[b] = acc.area();
                     right_count[b] = n;
                 }
                 acc = FBox();
                 n = 0;
-                for (int b = 0; b < kBins - 1; ++b) {
-                    acc.extend(bin_box[axis][b]);
-                    n += bin_count[axis][b];
+                for (int b = 0; b < nb - 1; ++b) {
+                    acc.extend(bins[axis][b]);
+                    n += counts[axis][b];
                     if (n == 0 || right_count[b + 1] == 0) continue;
                     const float cost = acc.area() * float(n) + right_area[b + 1] * float(right_count[b + 1]);
                     if (cost < best_cost) {
@@ -128,118 +136,186 @@ struct Builder {
                     }
                 }
             }
+            if (best_axis >= 0) {
+                const float parent_area = r.box.area();
+                const float split_cost = parent_area > 0 ? kTraversalCost + best_cost / parent_area : HUGE_VALF;
+                if (split_cost >= float(count) && count <= kMaxLeaf) return false;
+                axis_out = best_axis;
+                bin_out = best_bin;
+                return true;
+            }
         }
+        // All centroids coincide, or the depth limit was reached: object median.
+        return count > kMaxLeaf || level >= kSahDepthLimit;
+    }
 
+    void bin_all(const Range& r, const float scale[3], int nb, FBox bins[3][kBins], uint32_t counts[3][kBins]) const {
+#if defined(__SSE4_1__)
+        __m128 blo[3][kBins], bhi[3][kBins];
+        for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < nb; ++b) {
+                blo[a][b] = _mm_set1_ps(HUGE_VALF);
+                bhi[a][b] = _mm_set1_ps(-HUGE_VALF);
+            }
+        const __m128 cmin = _mm_setr_ps(r.cbox.lo[0], r.cbox.lo[1], r.cbox.lo[2], 0);
+        const __m128 sc = _mm_setr_ps(scale[0], scale[1], scale[2], 0);
+        const __m128i zero = _mm_setzero_si128(), top = _mm_set1_epi32(nb - 1);
+        for (uint32_t i = r.begin; i < r.end; ++i) {
+            // lane 3 holds the id bits / padding and is never read back
+            const __m128 lo = _mm_loadu_ps(refs[i].lo), hi = _mm_loadu_ps(refs[i].hi);
+            const __m128 c = _mm_add_ps(lo, hi);
+            __m128i b = _mm_cvttps_epi32(_mm_mul_ps(_mm_sub_ps(c, cmin), sc));
+            b = _mm_min_epi32(_mm_max_epi32(b, zero), top);
+            alignas(16) int idx[4];
+            _mm_store_si128(reinterpret_cast<__m128i*>(idx), b);
+            for (int a = 0; a < 3; ++a) {
+                blo[a][idx[a]] = _mm_min_ps(blo[a][idx[a]], lo);
+                bhi[a][idx[a]] = _mm_max_ps(bhi[a][idx[a]], hi);
+                ++counts[a][idx[a]];
+            }
+        }
+        for (int a = 0; a < 3; ++a)
+            for (int b = 0; b < nb; ++b) {
+                alignas(16) float l[4], h[4];
+                _mm_store_ps(l, blo[a][b]);
+                _mm_store_ps(h, bhi[a][b]);
+                bins[a][b].extend(l, h);
+            }
+#else
+        for (uint32_t i = r.begin; i < r.end; ++i) {
+            for (int a = 0; a < 3; ++a) {
+                int b = static_cast<int>((centre2(refs[i], a) - r.cbox.lo[a]) * scale[a]);
+                b = std::min(std::max(b, 0), nb - 1);
+                bins[a][b].extend(refs[i].lo, refs[i].hi);
+                ++counts[a][b];
+            }
+        }
+#endif
+    }
+
+    // Splits r into two ranges (with their bounds); r is marked a leaf instead
+    // when SAH prefers that.
+    bool split(Range& r, int level, Range& left, Range& right) const {
+        int axis = -1, bin = 0;
+        float scale[3];
+        const int nb = bins_for(r.count());
+        if (!best_split(r, level, axis, bin, scale, nb)) {
+            r.leaf = true;
+            return false;
+        }
         uint32_t mid;
-        if (best_axis >= 0) {
-            const float parent_area = box.area();
-            const float split_cost = parent_area > 0 ? kTraversalCost + best_cost / parent_area : HUGE_VALF;
-            if (split_cost >= float(count) && count <= kMaxLeaf) return leaf();
-            BuildBox* it = std::partition(refs + begin, refs + end,
-                                          [&](const BuildBox& r) { return bin_of(r, best_axis) <= best_bin; });
-            mid = static_cast<uint32_t>(it - refs);
+        if (axis >= 0) {
+            // In-place two-sided partition: bin <= best goes left.
+            const float lo = r.cbox.lo[axis], sc = scale[axis];
+            auto goes_left = [&](const BuildBox& b) {
+                const int k = static_cast<int>((centre2(b, axis) - lo) * sc);
+                return std::min(std::max(k, 0), nb - 1) <= bin;
+            };
+            uint32_t i = r.begin, j = r.end;
+            while (true) {
+                while (i < j && goes_left(refs[i])) ++i;
+                while (i < j && !goes_left(refs[j - 1])) --j;
+                if (i >= j) break;
+                std::swap(refs[i], refs[j - 1]);
+                ++i;
+                --j;
+            }
+            mid = i;
         } else {
-            // All centroids coincide, or the depth limit was reached: split at the
-            // object median of the widest axis, which always makes progress.
-            if (count <= kMaxLeaf && depth < kSahDepthLimit) return leaf();
-            const int axis =
-                extent[0] >= extent[1] ? (extent[0] >= extent[2] ? 0 : 2) : (extent[1] >= extent[2] ? 1 : 2);
-            mid = begin + count / 2;
-            std::nth_element(refs + begin, refs + mid, refs + end, [&](const BuildBox& a, const BuildBox& b) {
-                return centre2(a, axis) < centre2(b, axis) || (centre2(a, axis) == centre2(b, axis) && a.id < b.id);
+            const Vec3 e{r.cbox.hi[0] - r.cbox.lo[0], r.cbox.hi[1] - r.cbox.lo[1], r.cbox.hi[2] - r.cbox.lo[2]};
+            const int a = e.x >= e.y ? (e.x >= e.z ? 0 : 2) : (e.y >= e.z ? 1 : 2);
+            mid = r.begin + r.count() / 2;
+            std::nth_element(refs + r.begin, refs + mid, refs + r.end, [&](const BuildBox& x, const BuildBox& y) {
+                return centre2(x, a) < centre2(y, a) || (centre2(x, a) == centre2(y, a) && x.id < y.id);
             });
         }
-        if (mid == begin || mid == end) mid = begin + count / 2;
+        if (mid == r.begin || mid == r.end) mid = r.begin + r.count() / 2;
+        left = Range{r.begin, mid, {}, {}, false};
+        right = Range{mid, r.end, {}, {}, false};
+        bounds(left);
+        bounds(right);
+        return true;
+    }
 
-        uint32_t left, right;
-        if (threads_left > 0 && mid - begin >= kParallelMin && end - mid >= kParallelMin) {
-            // Left subtree on a new thread into its own vector, appended afterwards.
-            Builder other{refs, (threads_left - 1) / 2};
-            threads_left -= 1 + other.threads_left;
-            std::vector<BNode> sub;
-            uint32_t sub_root = 0;
-            std::thread t([&] { sub_root = other.build(sub, begin, mid, depth + 1); });
-            right = build(out, mid, end, depth + 1);
-            t.join();
-            max_depth = std::max(max_depth, other.max_depth);
-            const uint32_t offset = static_cast<uint32_t>(out.size());
-            for (BNode& n : sub) {
-                if (n.count == 0) {
-                    n.left += offset;
-                    n.right += offset;
-                }
-                out.push_back(n);
-            }
-            left = sub_root + offset;
-        } else {
-            left = build(out, begin, mid, depth + 1);
-            right = build(out, mid, end, depth + 1);
+    void bounds(Range& r) const {
+        FBox box, cbox;
+        for (uint32_t i = r.begin; i < r.end; ++i) {
+            box.extend(refs[i].lo, refs[i].hi);
+            const float c[3] = {centre2(refs[i], 0), centre2(refs[i], 1), centre2(refs[i], 2)};
+            cbox.extend(c, c);
         }
-        out[index].left = left;
-        out[index].right = right;
-        return index;
+        r.box = box;
+        r.cbox = cbox;
     }
-};
 
-// Collapses the binary tree into 4-wide nodes: each 4-wide node takes a binary
-// node's children and keeps opening the largest inner one until it has four.
-void set_slot(Bvh4Node& n, int slot, const FBox& b) {
-    for (int a = 0; a < 3; ++a) {
-        n.lo[a][slot] = b.lo[a];
-        n.hi[a][slot] = b.hi[a];
-    }
-}
-
-// A node with four empty slots.
-Bvh4Node empty_node() {
-    Bvh4Node n{};
-    for (int i = 0; i < 4; ++i) {
-        set_slot(n, i, FBox());
-        n.child[i] = Bvh4Node::kEmpty;
-    }
-    return n;
-}
-
-struct Collapser {
-    const std::vector<BNode>& bin;
-    std::vector<Bvh4Node>& nodes;
-    int depth = 0;
-
-    uint32_t collapse(uint32_t b, int level) {
-        depth = std::max(depth, level);
-        uint32_t kids[4] = {bin[b].left, bin[b].right, 0, 0};
-        int n = 2;
+    // Builds the node at `index` from a range already split into `l` and `rr`.
+    void build(uint32_t index, Range l, Range rr, int level) {
+        int seen = depth.load(std::memory_order_relaxed);
+        while (seen < level && !depth.compare_exchange_weak(seen, level)) {
+        }
+        // kids[i] is a leaf, or carries its own split in halves[i].
+        Range kids[4], halves[4][2];
+        bool is_split[4] = {};
+        int n = 0;
+        kids[n++] = l;
+        kids[n++] = rr;
+        auto evaluate = [&](int i) {
+            if (kids[i].leaf || is_split[i]) return;
+            is_split[i] = split(kids[i], level + 1, halves[i][0], halves[i][1]);
+        };
+        // Open the largest child that splits until there are four.
         while (n < 4) {
             int best = -1;
             float best_area = -1;
             for (int i = 0; i < n; ++i) {
-                const BNode& k = bin[kids[i]];
-                if (k.count == 0 && k.box.area() > best_area) {
-                    best_area = k.box.area();
+                evaluate(i);
+                if (is_split[i] && kids[i].box.area() > best_area) {
+                    best_area = kids[i].box.area();
                     best = i;
                 }
             }
             if (best < 0) break;
-            const uint32_t opened = kids[best];
-            kids[best] = bin[opened].left;
-            kids[n++] = bin[opened].right;
+            kids[n] = halves[best][1];
+            kids[best] = halves[best][0];
+            is_split[best] = is_split[n] = false;
+            ++n;
         }
-        const uint32_t index = static_cast<uint32_t>(nodes.size());
-        nodes.push_back(empty_node());
+        for (int i = 0; i < n; ++i) evaluate(i);
+
+        Bvh4Node& node = nodes[index];
+        clear_node(node);
+        // Take every child's node index before building any subtree.
+        uint32_t child_index[4] = {};
         for (int i = 0; i < n; ++i) {
-            const BNode& k = bin[kids[i]];
-            int32_t child;
-            if (k.count > 0) {
-                child = ~static_cast<int32_t>(k.first);
+            set_slot(node, i, kids[i].box);
+            if (!is_split[i]) {
+                node.child[i] = ~static_cast<int32_t>(kids[i].begin);
+                node.count[i] = static_cast<uint16_t>(kids[i].count());
             } else {
-                child = static_cast<int32_t>(collapse(kids[i], level + 1));
+                child_index[i] = next_node.fetch_add(1, std::memory_order_relaxed);
+                node.child[i] = static_cast<int32_t>(child_index[i]);
             }
-            Bvh4Node& node = nodes[index];  // collapse() may have reallocated
-            set_slot(node, i, k.box);
-            node.child[i] = child;
-            node.count[i] = static_cast<uint16_t>(k.count);
         }
-        return index;
+        std::thread helper;
+        for (int i = 0; i < n; ++i) {
+            if (!is_split[i]) continue;
+            if (!helper.joinable() && kids[i].count() >= kParallelMin && take_thread()) {
+                helper = std::thread([this, idx = child_index[i], a = halves[i][0], b = halves[i][1], level] {
+                    build(idx, a, b, level + 1);
+                    spare_threads.fetch_add(1);
+                });
+                continue;
+            }
+            build(child_index[i], halves[i][0], halves[i][1], level + 1);
+        }
+        if (helper.joinable()) helper.join();
+    }
+
+    bool take_thread() const {
+        int s = spare_threads.load();
+        while (s > 0)
+            if (spare_threads.compare_exchange_weak(s, s - 1)) return true;
+        return false;
     }
 };
 
@@ -250,38 +326,40 @@ void Bvh::build(std::vector<BuildBox>&& boxes) {
     prims.clear();
     depth = 0;
     if (boxes.empty()) return;
-    for (size_t i = 0; i < boxes.size(); ++i) boxes[i].id = static_cast<uint32_t>(i);
+    const uint32_t n = static_cast<uint32_t>(boxes.size());
+    for (uint32_t i = 0; i < n; ++i) boxes[i].id = i;
 
-    const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
-    Builder b{boxes.data(), hw - 1};
-    std::vector<BNode> bin;
-    bin.reserve(boxes.size() / 2 + 16);
-    const uint32_t root = b.build(bin, 0, static_cast<uint32_t>(boxes.size()), 0);
-
-    prims.resize(boxes.size());
-    for (size_t i = 0; i < boxes.size(); ++i) prims[i] = boxes[i].id;
-    std::vector<BuildBox>().swap(boxes);
-
-    const FBox& rb = bin[root].box;
+    // Every inner node has >= 2 children and every leaf >= 1 primitive, so a
+    // 4-wide tree over n primitives has fewer than n nodes; pages never written
+    // are never touched.
+    nodes.allocate(n + 1);
+    std::atomic<uint32_t> next{1};
+    std::atomic<int> max_depth{1};
+    std::atomic<int> spare{static_cast<int>(std::max(1u, std::thread::hardware_concurrency())) - 1};
+    Builder b{boxes.data(), nodes, next, max_depth, spare};
+    Range root{0, n, {}, {}, false};
+    b.bounds(root);
     for (int a = 0; a < 3; ++a) {
-        root_box.lo[a] = rb.lo[a];
-        root_box.hi[a] = rb.hi[a];
+        root_box.lo[a] = root.box.lo[a];
+        root_box.hi[a] = root.box.hi[a];
     }
-    if (bin[root].count > 0) {
-        // A single leaf: one 4-wide node with one slot.
-        nodes.push_back(empty_node());
+    Range l, r;
+    if (b.split(root, 1, l, r)) {
+        b.build(0, l, r, 1);
+    } else {
+        // Few primitives that SAH keeps together: one node with one leaf slot.
         Bvh4Node& node = nodes[0];
-        set_slot(node, 0, rb);
-        node.child[0] = ~static_cast<int32_t>(bin[root].first);
-        node.count[0] = static_cast<uint16_t>(bin[root].count);
-        depth = 1;
-        return;
+        clear_node(node);
+        set_slot(node, 0, root.box);
+        node.child[0] = ~0;
+        node.count[0] = static_cast<uint16_t>(n);
     }
-    nodes.reserve(bin.size() / 3 + 1);
-    Collapser c{bin, nodes};
-    c.collapse(root, 1);
-    depth = c.depth;
-    nodes.shrink_to_fit();
+    nodes.set_size(next.load());
+    depth = max_depth.load();
+
+    prims.resize(n);
+    for (uint32_t i = 0; i < n; ++i) prims[i] = boxes[i].id;
+    std::vector<BuildBox>().swap(boxes);
 }
 
 }  // namespace rt
