@@ -211,16 +211,27 @@ struct Builder {
                 const int k = static_cast<int>((centre2(b, axis) - lo) * sc);
                 return std::min(std::max(k, 0), nb - 1) <= bin;
             };
+            // Each element's side is final when a pointer passes it: its bounds
+            // go to that side then, so no further pass is needed.
+            left = Range{};
+            right = Range{};
             uint32_t i = r.begin, j = r.end;
             while (true) {
-                while (i < j && goes_left(refs[i])) ++i;
-                while (i < j && !goes_left(refs[j - 1])) --j;
+                while (i < j && goes_left(refs[i])) add(left, refs[i++]);
+                while (i < j && !goes_left(refs[j - 1])) add(right, refs[--j]);
                 if (i >= j) break;
                 std::swap(refs[i], refs[j - 1]);
-                ++i;
-                --j;
+                add(left, refs[i++]);
+                add(right, refs[--j]);
             }
             mid = i;
+            if (mid != r.begin && mid != r.end) {
+                left.begin = r.begin;
+                left.end = mid;
+                right.begin = mid;
+                right.end = r.end;
+                return true;
+            }
         } else {
             const Vec3 e{r.cbox.hi[0] - r.cbox.lo[0], r.cbox.hi[1] - r.cbox.lo[1], r.cbox.hi[2] - r.cbox.lo[2]};
             const int a = e.x >= e.y ? (e.x >= e.z ? 0 : 2) : (e.y >= e.z ? 1 : 2);
@@ -235,6 +246,12 @@ struct Builder {
         bounds(left);
         bounds(right);
         return true;
+    }
+
+    static void add(Range& r, const BuildBox& b) {
+        r.box.extend(b.lo, b.hi);
+        const float c[3] = {centre2(b, 0), centre2(b, 1), centre2(b, 2)};
+        r.cbox.extend(c, c);
     }
 
     void bounds(Range& r) const {
@@ -296,18 +313,38 @@ struct Builder {
                 node.child[i] = static_cast<int32_t>(child_index[i]);
             }
         }
+        // With a spare thread, split the subtrees between it and this thread:
+        // largest first, each to the side holding fewer primitives so far.
+        uint64_t total = 0;
+        for (int i = 0; i < n; ++i)
+            if (is_split[i]) total += kids[i].count();
+        bool to_helper[4] = {};
         std::thread helper;
-        for (int i = 0; i < n; ++i) {
-            if (!is_split[i]) continue;
-            if (!helper.joinable() && kids[i].count() >= kParallelMin && take_thread()) {
-                helper = std::thread([this, idx = child_index[i], a = halves[i][0], b = halves[i][1], level] {
-                    build(idx, a, b, level + 1);
-                    spare_threads.fetch_add(1);
-                });
-                continue;
+        if (total >= 2 * uint64_t(kParallelMin) && take_thread()) {
+            int order[4], m = 0;
+            for (int i = 0; i < n; ++i)
+                if (is_split[i]) order[m++] = i;
+            for (int a = 1; a < m; ++a)  // largest first (at most four)
+                for (int b = a; b > 0 && kids[order[b]].count() > kids[order[b - 1]].count(); --b)
+                    std::swap(order[b], order[b - 1]);
+            uint64_t mine = 0, theirs = 0;
+            for (int k = 0; k < m; ++k) {
+                const int i = order[k];
+                if (theirs <= mine) {
+                    to_helper[i] = true;
+                    theirs += kids[i].count();
+                } else {
+                    mine += kids[i].count();
+                }
             }
-            build(child_index[i], halves[i][0], halves[i][1], level + 1);
+            helper = std::thread([&, level] {
+                for (int i = 0; i < n; ++i)
+                    if (to_helper[i]) build(child_index[i], halves[i][0], halves[i][1], level + 1);
+                spare_threads.fetch_add(1);
+            });
         }
+        for (int i = 0; i < n; ++i)
+            if (is_split[i] && !to_helper[i]) build(child_index[i], halves[i][0], halves[i][1], level + 1);
         if (helper.joinable()) helper.join();
     }
 
