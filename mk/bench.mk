@@ -1,0 +1,18 @@
+# Benchmarks against refrender (../shared/tools): tests/bench/bench.py, tests/bench/gen_mesh.cpp.
+#   make bench                          every complete official scene + knot_{1m,4m,16m}_{plain,glass,gold}, 5 runs
+#   make bench-quick                    the same without the 16M scenes, 3 runs
+#   make bench BENCH_ARGS="--scenes bunny,knot_1m --runs 3 --threads 2"   (see bench.py --help)
+# Generated scenes go to build/bench/scenes/, the report to build/bench/bench.{md,json}.
+BENCH_GEN  := build/bench/gen_mesh
+BENCH_ARGS ?=
+
+$(BENCH_GEN): tests/bench/gen_mesh.cpp
+	@mkdir -p $(dir $@)
+	$(CXX) -O2 -std=c++17 -ffp-contract=off -Wall -Wextra -o $@ $<
+
+.PHONY: bench bench-quick
+bench: raytracer $(BENCH_GEN)
+	python3 tests/bench/bench.py --raytracer ./raytracer --gen-mesh $(BENCH_GEN) $(BENCH_ARGS)
+
+bench-quick: raytracer $(BENCH_GEN)
+	python3 tests/bench/bench.py --raytracer ./raytracer --gen-mesh $(BENCH_GEN) --quick $(BENCH_ARGS)
