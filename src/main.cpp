@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "cli/run_stats.h"
 #include "rt/error.h"
 #include "rt/loader.h"
 #include "rt/render.h"
@@ -19,20 +20,28 @@ namespace {
 
 const char* kVersion = "raytracer 1.0";
 const char* kUsage =
-    "usage: raytracer [-o DIR] [-j N] [--cull|--no-cull] [--rounding truncate|nearest] [-q] scene.json...";
+    "usage: raytracer [-o DIR] [-j N] [--cull|--no-cull] [--rounding truncate|nearest] [--stats FILE] [-q] scene.json|scene.xml...";
 
 void print_help() {
     std::printf(
         "%s\n\n"
-        "Renders every camera of each JSON scene file to the PNG its ImageName names.\n\n"
+        "Renders every camera of each scene file (JSON, or the course's older XML format when the\n"
+        "name ends in .xml) to the image its ImageName names: PNG (.png) or binary PPM (.ppm).\n\n"
         "options:\n"
         "  -o, --output-dir DIR   write relative image names under DIR (created if needed)\n"
         "  -j, --threads N        render with N threads (default: all hardware threads)\n"
         "      --cull, --no-cull  back-face culling of camera and reflection rays (default: on)\n"
         "      --rounding MODE    truncate (default, as the reference images) or nearest\n"
-        "  -q, --quiet            print errors only\n"
+        "      --stats FILE       write figures per image (times, rays by kind, BVH, memory) to FILE as JSON\n"
+        "  -q, --quiet            print errors only (and no progress line, which is shown only on a terminal)\n"
         "  -h, --help             show this help\n"
         "      --version          show the version\n\n"
+        "for measurements (the defaults are the scene's values and the tuned BVH):\n"
+        "      --max-depth N      override every scene's MaxRecursionDepth (0..10000)\n"
+        "      --epsilon-scale F  multiply every scene's ShadowRayEpsilon by F (> 0)\n"
+        "      --bvh-leaf N       largest BVH leaf (1..1024, default 8)\n"
+        "      --bvh-bins N       SAH bins per axis (2..16, default 16)\n"
+        "      --bvh-split MODE   sah (default) or median (object-median splits, no SAH)\n\n"
         "exit status: 0 all images written, 1 bad input or an image could not be written, 2 usage error\n",
         kUsage);
 }
@@ -47,7 +56,26 @@ struct Options {
     rt::RenderOptions render;
     bool quiet = false;
     std::vector<std::string> scenes;
+    std::string stats_path;   // --stats
+    bool progress = false;    // a progress line: stderr is a terminal and not --quiet
+    int max_depth = -1;       // --max-depth; -1: the scene's
+    double epsilon_scale = 1; // --epsilon-scale
+    rt::BvhBuildOptions bvh;  // --bvh-*
 };
+
+// Figures of every image written, for --stats.
+std::vector<rt::cli::ImageRecord> g_stats;
+
+// A whole number in [lo, hi] for option `name`, or a usage error.
+long whole_number(const std::string& name, const std::string& v, long lo, long hi) {
+    char* end = nullptr;
+    errno = 0;
+    const long n = std::strtol(v.c_str(), &end, 10);
+    if (v.empty() || *end != '\0' || errno != 0 || n < lo || n > hi)
+        usage_error(name + " needs a whole number from " + std::to_string(lo) + " to " + std::to_string(hi) +
+                    ", got '" + v + "'");
+    return n;
+}
 
 Options parse_args(int argc, char** argv) {
     Options o;
@@ -91,11 +119,33 @@ Options parse_args(int argc, char** argv) {
             else usage_error("--rounding takes truncate or nearest, got '" + v + "'");
         } else if (a == "-q" || a == "--quiet") {
             o.quiet = true;
+        } else if (a == "--stats" || a.rfind("--stats=", 0) == 0) {
+            o.stats_path = a == "--stats" ? value("--stats") : a.substr(8);
+            if (o.stats_path.empty()) usage_error("--stats needs a file name");
+        } else if (a == "--max-depth") {
+            o.max_depth = static_cast<int>(whole_number(a, value("--max-depth"), 0, 10000));
+        } else if (a == "--epsilon-scale") {
+            const std::string v = value("--epsilon-scale");
+            char* end = nullptr;
+            const double f = std::strtod(v.c_str(), &end);
+            if (v.empty() || *end != '\0' || !(f > 0) || !(f < 1e30))
+                usage_error("--epsilon-scale needs a positive number, got '" + v + "'");
+            o.epsilon_scale = f;
+        } else if (a == "--bvh-leaf") {
+            o.bvh.max_leaf = static_cast<uint32_t>(whole_number(a, value("--bvh-leaf"), 1, 1024));
+        } else if (a == "--bvh-bins") {
+            o.bvh.bins = static_cast<int>(whole_number(a, value("--bvh-bins"), 2, 16));
+        } else if (a == "--bvh-split") {
+            const std::string v = value("--bvh-split");
+            if (v == "sah") o.bvh.sah = true;
+            else if (v == "median") o.bvh.sah = false;
+            else usage_error("--bvh-split takes sah or median, got '" + v + "'");
         } else {
             usage_error("unknown option '" + a + "'");
         }
     }
     if (o.scenes.empty()) usage_error("no scene file given");
+    o.progress = !o.quiet && rt::cli::stderr_is_terminal();
     return o;
 }
 
@@ -117,12 +167,29 @@ bool run_scene(const std::string& scene_path, const Options& o) {
     const auto t0 = std::chrono::steady_clock::now();
     rt::Scene scene;
     double load_s = 0;
+    rt::cli::SceneTimes times;
     try {
         rt::SceneDesc desc = rt::load_scene(scene_path);
+        times.ply = desc.ply_seconds;
+        times.parse = seconds_since(t0) - desc.ply_seconds;
         if (!o.quiet)
             for (const std::string& w : desc.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
-        scene = rt::build_scene(std::move(desc));
+        // Every image name is checked before anything is rendered: .png or .ppm.
+        bool names_ok = true;
+        for (size_t c = 0; c < desc.cameras.size(); ++c) {
+            if (rt::image_format_of(desc.cameras[c].image_name) != rt::ImageFormat::Unknown) continue;
+            std::fprintf(stderr, "%s: camera %zu: ImageName '%s': unknown image format (the name must end in .png or .ppm)\n",
+                         scene_path.c_str(), c + 1, desc.cameras[c].image_name.c_str());
+            names_ok = false;
+        }
+        if (!names_ok) return false;
+        const auto b0 = std::chrono::steady_clock::now();
+        scene = rt::build_scene(std::move(desc), o.bvh);
+        times.bvh = double(scene.build_seconds);
+        times.setup = seconds_since(b0) - times.bvh;
         load_s = seconds_since(t0) - scene.build_seconds;
+        if (o.max_depth >= 0) scene.max_recursion_depth = o.max_depth;
+        scene.shadow_ray_epsilon = static_cast<rt::Real>(scene.shadow_ray_epsilon * o.epsilon_scale);
         if (scene.degenerate_triangles > 0 && !o.quiet)
             std::fprintf(stderr, "warning: %s: skipped %zu degenerate triangle%s\n", scene_path.c_str(),
                          scene.degenerate_triangles, scene.degenerate_triangles > 1 ? "s" : "");
@@ -145,15 +212,49 @@ bool run_scene(const std::string& scene_path, const Options& o) {
         if (!o.output_dir.empty() && out[0] != '/') out = o.output_dir + "/" + out;
         try {
             make_parents(out);
+            rt::RenderOptions ropt = o.render;
+            rt::cli::ProgressLine progress(o.progress);
+            if (progress.enabled()) {
+                progress.start(out);
+                ropt.progress = [&progress](int done, int total) { progress.update(done, total); };
+            }
+            rt::RenderStats rstats;
             const auto r0 = std::chrono::steady_clock::now();
-            const rt::Image img = rt::render(scene, c, o.render);
+            const rt::Image img = rt::render(scene, c, ropt, &rstats);
             const double render_s = seconds_since(r0);
+            progress.clear();
             const auto w0 = std::chrono::steady_clock::now();
-            rt::write_png(img, out);
+            rt::write_image(img, out);
+            const double write_s = seconds_since(w0);
             if (!o.quiet)
                 std::fprintf(stderr, "%s: %dx%d, %zu triangles, %zu spheres, load %.3fs, bvh %.3fs, render %.3fs, write %.3fs\n",
                              out.c_str(), cam.width, cam.height, scene.triangles.size(), scene.spheres.size(), load_s,
-                             double(scene.build_seconds), render_s, seconds_since(w0));
+                             double(scene.build_seconds), render_s, write_s);
+            if (!o.stats_path.empty()) {
+                rt::cli::ImageRecord r;
+                r.scene = scene_path;
+                r.image = out;
+                r.camera = c + 1;
+                r.width = cam.width;
+                r.height = cam.height;
+                r.triangles = scene.triangles.size();
+                r.spheres = scene.spheres.size();
+                r.planes = scene.planes.size();
+                r.lights = scene.lights.size();
+                r.degenerate = scene.degenerate_triangles;
+                r.times = times;
+                r.render = render_s;
+                r.write = write_s;
+                r.render_stats = rstats;
+                r.cull = o.render.cull;
+                r.max_recursion_depth = scene.max_recursion_depth;
+                r.shadow_ray_epsilon = double(scene.shadow_ray_epsilon);
+                r.bvh_nodes = scene.bvh.nodes.size();
+                r.bvh_depth = scene.bvh.depth;
+                r.bvh = o.bvh;
+                r.peak_rss = rt::cli::peak_rss_bytes();
+                g_stats.push_back(std::move(r));
+            }
         } catch (const rt::InputError& e) {
             std::fprintf(stderr, "%s: camera %zu: %s\n", scene_path.c_str(), c + 1, e.what());
             ok = false;
@@ -177,5 +278,13 @@ int main(int argc, char** argv) {
     const Options o = parse_args(argc, argv);
     bool ok = true;
     for (const std::string& s : o.scenes) ok = run_scene(s, o) && ok;
+    if (!o.stats_path.empty()) {
+        try {
+            rt::write_file_atomic(o.stats_path, rt::cli::stats_json(g_stats, kVersion));
+        } catch (const rt::InputError& e) {
+            std::fprintf(stderr, "%s\n", e.what());
+            ok = false;
+        }
+    }
     return ok ? 0 : 1;
 }

@@ -71,11 +71,17 @@ std::string raytracer_path() { return g_start_dir + "/raytracer"; }
 
 RunResult run_raytracer(const std::vector<std::string>& args, const std::string& cwd,
                         unsigned timeout_seconds) {
+    return run_program(raytracer_path(), args, cwd, timeout_seconds);
+}
+
+std::string rtconvert_path() { return g_start_dir + "/rtconvert"; }
+
+RunResult run_program(const std::string& exe, const std::vector<std::string>& args, const std::string& cwd,
+                      unsigned timeout_seconds) {
     RunResult result;
     TempDir capture;
     const std::string out_path = capture / "stdout";
     const std::string err_path = capture / "stderr";
-    const std::string exe = raytracer_path();
 
     // Everything the child needs is prepared before fork: only async-signal-safe
     // calls happen between fork and exec.
@@ -108,7 +114,7 @@ RunResult run_raytracer(const std::vector<std::string>& args, const std::string&
         }
         alarm(timeout_seconds);  // survives exec: a hung renderer dies of SIGALRM
         execv(exe.c_str(), argv.data());
-        const char msg[] = "run_raytracer: cannot execute ./raytracer\n";
+        const char msg[] = "run_program: cannot execute the program\n";
         ssize_t ignored = write(2, msg, sizeof msg - 1);
         (void)ignored;
         _exit(127);

@@ -44,6 +44,12 @@ RunResult run_raytracer(const std::vector<std::string>& args, const std::string&
 // The absolute path run_raytracer executes.
 std::string raytracer_path();
 
+// run_raytracer for any program (an absolute path), e.g. rtconvert_path(): the repo's
+// ./rtconvert, resolved like raytracer_path().
+RunResult run_program(const std::string& exe, const std::vector<std::string>& args, const std::string& cwd = "",
+                      unsigned timeout_seconds = 120);
+std::string rtconvert_path();
+
 // Reads a PNG (any channel count) as 8-bit RGB. False when it cannot be read.
 bool load_png(const std::string& path, rt::Image& out);
 

@@ -69,6 +69,15 @@ private:
     size_t size_ = 0;
 };
 
+// Build quality knobs (the raytracer's hidden --bvh-* options, for measurements);
+// the defaults are what every render uses.
+struct BvhBuildOptions {
+    uint32_t max_leaf = 8;      // a leaf never holds more primitives, whatever SAH says (1..64)
+    float traversal_cost = 1;   // SAH cost of one traversal step, relative to one primitive test
+    int bins = 16;              // SAH bins per axis for large ranges (2..16; small ranges use fewer)
+    bool sah = true;            // false: object-median splits only (fastest build, slower rays)
+};
+
 struct Bvh {
     NodeArray nodes;              // nodes[0] is the root (absent when there are no primitives)
     std::vector<uint32_t> prims;  // primitive ids in leaf order
@@ -76,7 +85,7 @@ struct Bvh {
     int depth = 0;                // of the 4-wide tree, root = 1
 
     // Builds over `boxes[i]` (one box per primitive id i); frees `boxes`.
-    void build(std::vector<BuildBox>&& boxes);
+    void build(std::vector<BuildBox>&& boxes, const BvhBuildOptions& options = {});
 };
 
 }  // namespace rt

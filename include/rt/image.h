@@ -24,4 +24,21 @@ uint8_t quantize(Real value, Rounding rounding);
 // so a failure never leaves a half-written image. Throws rt::InputError naming `path`.
 void write_png(const Image& image, const std::string& path);
 
+// Binary PPM (P6, maxval 255), written atomically like write_png.
+void write_ppm(const Image& image, const std::string& path);
+
+enum class ImageFormat { Png, Ppm, Unknown };
+
+// The format an image name asks for, by its extension (case-insensitive):
+// ".png" or ".ppm"; anything else is Unknown.
+ImageFormat image_format_of(const std::string& path);
+
+// write_png or write_ppm as the name's extension asks; throws rt::InputError
+// naming `path` for any other extension.
+void write_image(const Image& image, const std::string& path);
+
+// Writes `bytes` to a temporary name beside `path` and renames it over `path`.
+// Throws rt::InputError "<path>: cannot write: <reason>"; nothing is left behind on failure.
+void write_file_atomic(const std::string& path, const std::string& bytes);
+
 }  // namespace rt

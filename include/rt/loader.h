@@ -1,4 +1,5 @@
-// Scene loading: JSON text -> SceneDesc (plain structs, all ids resolved and checked).
+// Scene loading: JSON (or the course's older XML) text -> SceneDesc (plain structs,
+// all ids resolved and checked).
 #pragma once
 #include <string>
 
@@ -7,10 +8,20 @@
 namespace rt {
 
 // Reads and parses a scene file; PLY files are resolved relative to its folder.
-// Throws rt::InputError "<path>: <json pointer>: <what>" for any bad input.
+// A name ending in ".xml" (any case) is read as the course's previous XML format,
+// anything else as JSON. Throws rt::InputError "<path>: <json pointer>: <what>" for
+// any bad input (XML syntax errors: "<path>: line L, column C: <what>").
 SceneDesc load_scene(const std::string& path);
 
 // Parses scene JSON held in memory; `path` names it in messages and anchors PLY paths.
 SceneDesc parse_scene(const std::string& json_text, const std::string& path);
+
+// Parses a scene in the course's XML format held in memory: the XML is turned into the
+// JSON tree the course's conversion produces (xml_json.h) and loaded like a JSON scene,
+// so error places are JSON pointers of that tree (/Scene/Objects/Sphere/2/Radius).
+SceneDesc parse_scene_xml(const std::string& xml_text, const std::string& path);
+
+// True when `path` ends in ".xml", in any case.
+bool is_xml_path(const std::string& path);
 
 }  // namespace rt

@@ -23,4 +23,8 @@ struct PlyMesh {
 // faces with fewer than 3 vertices, non-finite coordinates, or counts the file cannot hold.
 PlyMesh read_ply(const std::string& path);
 
+// Parses PLY bytes held in memory (the same reader as read_ply); `path` names the
+// data in messages. Used by the fuzz target and by tests.
+PlyMesh parse_ply(const char* data, size_t size, const std::string& path);
+
 }  // namespace rt

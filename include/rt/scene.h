@@ -75,9 +75,9 @@ struct Scene {
 
 // Builds render data: copies vertices per mesh, computes face normals and
 // area-weighted vertex normals of smooth meshes, skips degenerate triangles
-// (spec 2.10) and builds the BVH.
-Scene build_scene(const SceneDesc& desc);
+// (spec 2.10) and builds the BVH (`bvh`: build quality knobs, for measurements).
+Scene build_scene(const SceneDesc& desc, const BvhBuildOptions& bvh = {});
 // The same, releasing each mesh of `desc` as soon as it is copied (lower peak memory).
-Scene build_scene(SceneDesc&& desc);
+Scene build_scene(SceneDesc&& desc, const BvhBuildOptions& bvh = {});
 
 }  // namespace rt

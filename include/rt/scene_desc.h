@@ -72,6 +72,7 @@ struct SceneDesc {
     std::vector<SphereDesc> spheres;
     std::vector<PlaneDesc> planes;
     std::vector<std::string> warnings;  // unknown keys, skipped degenerate triangles, ...
+    double ply_seconds = 0;             // spent reading PLY files, for --stats
 };
 
 }  // namespace rt

@@ -33,10 +33,25 @@ struct TraceOptions {
     bool cull = true;
 };
 
-// Per-thread state that speeds up tracing without changing any result:
-// the last occluder found for each point light (see any_hit).
+// Rays traced, by kind: one camera ray per pixel; one shadow ray per light that
+// faces a shaded point; reflection and refraction rays as they are spawned.
+struct RayCounts {
+    uint64_t camera = 0, shadow = 0, reflection = 0, refraction = 0;
+    uint64_t total() const { return camera + shadow + reflection + refraction; }
+    RayCounts& operator+=(const RayCounts& o) {
+        camera += o.camera;
+        shadow += o.shadow;
+        reflection += o.reflection;
+        refraction += o.refraction;
+        return *this;
+    }
+};
+
+// Per-thread state: the last occluder found for each point light (see any_hit),
+// which speeds up tracing without changing any result, and the rays traced so far.
 struct TraceCache {
     std::vector<uint32_t> last_occluder;
+    RayCounts rays;
 };
 
 // Radiance (in 0..255 units, unclamped) arriving at the camera along a primary ray.

@@ -30,15 +30,15 @@ float round_up_to_float(Real x) {
 
 namespace {
 
-constexpr int kBins = 16;  // for large ranges; small ones use fewer (bins_for)
+// Most bins per axis (BvhBuildOptions::bins, 16 by default, for large ranges).
+constexpr int kBins = 16;
 
 // Bins for a range of `count` primitives: the per-split constant cost (clearing,
 // sweeping) dominates small ranges, where few bins already find the best plane.
-inline int bins_for(uint32_t count) {
-    return count >= 32 ? kBins : std::max(4, static_cast<int>(count / 2));
+// The leaf size limit and the traversal cost are BvhBuildOptions (8 and 1).
+inline int bins_for(uint32_t count, int max_bins) {
+    return std::min(max_bins, count >= 32 ? kBins : std::max(4, static_cast<int>(count / 2)));
 }
-constexpr uint32_t kMaxLeaf = 8;     // a leaf never holds more, whatever SAH says
-constexpr float kTraversalCost = 1;  // relative to one primitive test
 constexpr int kSahDepthLimit = 48;   // beyond it, object-median splits bound the depth
 constexpr uint32_t kParallelMin = 1u << 15;  // smallest subtree worth a thread
 
@@ -92,6 +92,7 @@ struct Builder {
     std::atomic<uint32_t>& next_node;
     std::atomic<int>& depth;
     std::atomic<int>& spare_threads;
+    BvhBuildOptions opt;
 
     // Bins r's centroids along all axes; returns false when r should stay a leaf,
     // otherwise the best axis and bin.
@@ -104,7 +105,7 @@ struct Builder {
         }
         if (count <= 1) return false;
         axis_out = -1;
-        if (level < kSahDepthLimit) {
+        if (opt.sah && level < kSahDepthLimit) {
             float best_cost = HUGE_VALF;
             int best_axis = -1, best_bin = 0;
             FBox bins[3][kBins];
@@ -138,15 +139,15 @@ struct Builder {
             }
             if (best_axis >= 0) {
                 const float parent_area = r.box.area();
-                const float split_cost = parent_area > 0 ? kTraversalCost + best_cost / parent_area : HUGE_VALF;
-                if (split_cost >= float(count) && count <= kMaxLeaf) return false;
+                const float split_cost = parent_area > 0 ? opt.traversal_cost + best_cost / parent_area : HUGE_VALF;
+                if (split_cost >= float(count) && count <= opt.max_leaf) return false;
                 axis_out = best_axis;
                 bin_out = best_bin;
                 return true;
             }
         }
         // All centroids coincide, or the depth limit was reached: object median.
-        return count > kMaxLeaf || level >= kSahDepthLimit;
+        return count > opt.max_leaf || level >= kSahDepthLimit;
     }
 
     void bin_all(const Range& r, const float scale[3], int nb, FBox bins[3][kBins], uint32_t counts[3][kBins]) const {
@@ -198,7 +199,7 @@ struct Builder {
     bool split(Range& r, int level, Range& left, Range& right) const {
         int axis = -1, bin = 0;
         float scale[3];
-        const int nb = bins_for(r.count());
+        const int nb = bins_for(r.count(), opt.bins);
         if (!best_split(r, level, axis, bin, scale, nb)) {
             r.leaf = true;
             return false;
@@ -358,7 +359,7 @@ struct Builder {
 
 }  // namespace
 
-void Bvh::build(std::vector<BuildBox>&& boxes) {
+void Bvh::build(std::vector<BuildBox>&& boxes, const BvhBuildOptions& options) {
     nodes.clear();
     prims.clear();
     depth = 0;
@@ -373,7 +374,10 @@ void Bvh::build(std::vector<BuildBox>&& boxes) {
     std::atomic<uint32_t> next{1};
     std::atomic<int> max_depth{1};
     std::atomic<int> spare{static_cast<int>(std::max(1u, std::thread::hardware_concurrency())) - 1};
-    Builder b{boxes.data(), nodes, next, max_depth, spare};
+    BvhBuildOptions opt = options;
+    opt.max_leaf = std::min<uint32_t>(std::max<uint32_t>(opt.max_leaf, 1), 1024);  // Bvh4Node::count is 16 bits
+    opt.bins = std::min(std::max(opt.bins, 2), kBins);
+    Builder b{boxes.data(), nodes, next, max_depth, spare, opt};
     Range root{0, n, {}, {}, false};
     b.bounds(root);
     for (int a = 0; a < 3; ++a) {

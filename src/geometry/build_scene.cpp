@@ -73,7 +73,7 @@ BuildBox make_box(Vec3 lo, Vec3 hi) {
 
 // Builds everything; `release(i)` is called once mesh i has been copied.
 template <class Release>
-Scene build(const SceneDesc& d, Release release) {
+Scene build(const SceneDesc& d, const BvhBuildOptions& bvh, Release release) {
     Scene s;
     s.path = d.path;
     s.background = d.background;
@@ -112,19 +112,19 @@ Scene build(const SceneDesc& d, Release release) {
         const Vec3 r{sp.radius, sp.radius, sp.radius};
         boxes[s.triangles.size() + i] = make_box(sp.center - r, sp.center + r);
     }
-    s.bvh.build(std::move(boxes));
+    s.bvh.build(std::move(boxes), bvh);
     s.build_seconds = std::chrono::duration<Real>(std::chrono::steady_clock::now() - t0).count();
     return s;
 }
 
 }  // namespace
 
-Scene build_scene(const SceneDesc& d) {
-    return build(d, [](size_t) {});
+Scene build_scene(const SceneDesc& d, const BvhBuildOptions& bvh) {
+    return build(d, bvh, [](size_t) {});
 }
 
-Scene build_scene(SceneDesc&& d) {
-    return build(d, [&d](size_t i) {
+Scene build_scene(SceneDesc&& d, const BvhBuildOptions& bvh) {
+    return build(d, bvh, [&d](size_t i) {
         std::vector<Vec3>().swap(d.meshes[i].positions);
         std::vector<uint32_t>().swap(d.meshes[i].indices);
     });

@@ -1,6 +1,7 @@
-// PNG output through stb_image_write (Debian libstb-dev), written atomically.
+// PNG output through stb_image_write (Debian libstb-dev) and binary PPM, written atomically.
 #include <stb/stb_image_write.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -26,12 +27,7 @@ void append_bytes(void* context, void* data, int size) {
 }
 }  // namespace
 
-void write_png(const Image& image, const std::string& path) {
-    std::string bytes;
-    if (!stbi_write_png_to_func(append_bytes, &bytes, image.width, image.height, 3, image.rgb.data(),
-                                image.width * 3))
-        throw InputError(path + ": cannot encode PNG");
-
+void write_file_atomic(const std::string& path, const std::string& bytes) {
     // Write beside the target and rename over it, so that readers never see a
     // partial file and a failure leaves nothing behind.
     const std::string tmp = path + ".tmp" + std::to_string(::getpid());
@@ -48,6 +44,40 @@ void write_png(const Image& image, const std::string& path) {
         const int e = errno;
         std::remove(tmp.c_str());
         throw InputError(path + ": cannot write: " + std::strerror(e));
+    }
+}
+
+void write_png(const Image& image, const std::string& path) {
+    std::string bytes;
+    if (!stbi_write_png_to_func(append_bytes, &bytes, image.width, image.height, 3, image.rgb.data(),
+                                image.width * 3))
+        throw InputError(path + ": cannot encode PNG");
+    write_file_atomic(path, bytes);
+}
+
+void write_ppm(const Image& image, const std::string& path) {
+    const size_t n = size_t(image.width) * size_t(image.height) * 3;
+    if (image.width <= 0 || image.height <= 0 || image.rgb.size() != n)
+        throw InputError(path + ": cannot encode PPM: bad image size");
+    std::string bytes = "P6\n" + std::to_string(image.width) + " " + std::to_string(image.height) + "\n255\n";
+    bytes.append(reinterpret_cast<const char*>(image.rgb.data()), n);
+    write_file_atomic(path, bytes);
+}
+
+ImageFormat image_format_of(const std::string& path) {
+    if (path.size() < 4) return ImageFormat::Unknown;
+    std::string ext = path.substr(path.size() - 4);
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (ext == ".png") return ImageFormat::Png;
+    if (ext == ".ppm") return ImageFormat::Ppm;
+    return ImageFormat::Unknown;
+}
+
+void write_image(const Image& image, const std::string& path) {
+    switch (image_format_of(path)) {
+        case ImageFormat::Png: return write_png(image, path);
+        case ImageFormat::Ppm: return write_ppm(image, path);
+        default: throw InputError(path + ": unknown image format (the name must end in .png or .ppm)");
     }
 }
 

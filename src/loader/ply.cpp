@@ -257,6 +257,7 @@ public:
     size_t size() const { return size_; }
 
     static constexpr size_t kMapThreshold = size_t(1) << 20;
+    static constexpr size_t kMaxStreamBytes = size_t(1) << 32;
 
     void load(const std::string& path) {
         const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC);
@@ -269,6 +270,10 @@ public:
         struct stat st;
         if (::fstat(fd, &st) != 0) throw InputError(path + ": cannot open: " + errno_text(errno));
         if (S_ISDIR(st.st_mode)) throw InputError(path + ": cannot open: " + errno_text(EISDIR));
+        // Devices are refused (/dev/zero would be read until memory runs out); pipes
+        // are read, up to kMaxStreamBytes.
+        if (!S_ISREG(st.st_mode) && !S_ISFIFO(st.st_mode))
+            throw InputError(path + ": cannot open: not a regular file");
 
         if (S_ISREG(st.st_mode) && static_cast<uint64_t>(st.st_size) >= kMapThreshold) {
             void* m = ::mmap(nullptr, static_cast<size_t>(st.st_size), PROT_READ,
@@ -288,6 +293,9 @@ public:
         heap_.reset(new unsigned char[cap]);
         for (;;) {
             if (size_ == cap) {
+                if (cap >= kMaxStreamBytes)
+                    throw InputError(path + ": cannot read: more than " + std::to_string(kMaxStreamBytes >> 20) +
+                                     " MiB from a pipe");
                 const size_t new_cap = cap * 2;
                 std::unique_ptr<unsigned char[]> bigger(new unsigned char[new_cap]);
                 std::memcpy(bigger.get(), heap_.get(), size_);
@@ -898,6 +906,9 @@ private:
                       reinterpret_cast<const char*>(data_ + size_), body_line_};
         for (size_t e = 0; e < elements_.size(); ++e) {
             const Element& el = elements_[e];
+            // An element without properties has empty records: nothing to read, and
+            // its count (which check_sizes cannot bound) must not drive a loop.
+            if (el.props.empty()) continue;
             const bool is_vertex = e == vertex_el_;
             if (is_vertex) mesh.positions.resize(3 * static_cast<size_t>(el.count));
             for (uint64_t i = 0; i < el.count; ++i) {
@@ -953,6 +964,11 @@ PlyMesh read_ply(const std::string& path) {
     FileBytes f;
     f.load(path);
     PlyParser parser(path, f.data(), f.size());
+    return parser.parse();
+}
+
+PlyMesh parse_ply(const char* data, size_t size, const std::string& path) {
+    PlyParser parser(path, reinterpret_cast<const unsigned char*>(data), size);
     return parser.parse();
 }
 

@@ -1,7 +1,11 @@
 // Tile pool: workers pull 16x16 tiles from an atomic counter. Each pixel is a
 // pure function of the scene, so the image does not depend on the thread count.
+// Each worker counts its rays in its own TraceCache; the counts are summed at the end.
 #include <algorithm>
 #include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
 #include <thread>
 #include <vector>
 
@@ -10,7 +14,7 @@
 
 namespace rt {
 
-Image render(const Scene& scene, size_t camera_index, const RenderOptions& options) {
+Image render(const Scene& scene, size_t camera_index, const RenderOptions& options, RenderStats* stats) {
     const Camera& cam = scene.cameras.at(camera_index);
     Image img;
     img.width = cam.width;
@@ -23,8 +27,19 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
     const int tiles = tiles_x * tiles_y;
     std::atomic<int> next{0};
     const TraceOptions topt{options.cull};
+    const bool watch = static_cast<bool>(options.progress);
 
-    auto work = [&]() {
+    int threads = options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency());
+    threads = std::max(1, std::min(threads, tiles));
+
+    // Progress: tiles finished (one relaxed increment per tile), and workers finished.
+    std::atomic<int> done{0};
+    std::mutex finished_mutex;
+    std::condition_variable finished_cv;
+    int finished = 0;
+    std::vector<RayCounts> rays(static_cast<size_t>(threads));
+
+    auto work = [&](int worker) {
         TraceCache cache;  // per thread
         for (int tile; (tile = next.fetch_add(1, std::memory_order_relaxed)) < tiles;) {
             const int x0 = (tile % tiles_x) * kTile, y0 = (tile / tiles_x) * kTile;
@@ -38,15 +53,51 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
                     px[2] = quantize(c.z, options.rounding);
                 }
             }
+            if (watch) done.fetch_add(1, std::memory_order_relaxed);
+        }
+        rays[static_cast<size_t>(worker)] = cache.rays;
+        if (watch) {
+            {
+                std::lock_guard<std::mutex> lock(finished_mutex);
+                ++finished;
+            }
+            finished_cv.notify_one();
         }
     };
 
-    int threads = options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency());
-    threads = std::max(1, std::min(threads, tiles));
+    // Without a progress callback the calling thread is worker 0; with one, it watches.
     std::vector<std::thread> pool;
-    for (int i = 1; i < threads; ++i) pool.emplace_back(work);
-    work();
+    try {
+        for (int i = watch ? 0 : 1; i < threads; ++i) pool.emplace_back(work, i);
+    } catch (...) {
+        // No more threads: stop the ones that started (they find no tile left), then report.
+        next.store(tiles);
+        for (std::thread& t : pool) t.join();
+        throw;
+    }
+    if (watch) {
+        const auto interval = std::chrono::duration<double>(std::max(0.001, options.progress_interval));
+        std::unique_lock<std::mutex> lock(finished_mutex);
+        while (!finished_cv.wait_for(lock, interval, [&] { return finished == threads; })) {
+            lock.unlock();
+            try {
+                options.progress(done.load(std::memory_order_relaxed), tiles);
+            } catch (...) {
+                // A failing progress display never stops the render.
+            }
+            lock.lock();
+        }
+    } else {
+        work(0);
+    }
     for (std::thread& t : pool) t.join();
+
+    if (stats) {
+        *stats = RenderStats{};
+        for (const RayCounts& r : rays) stats->rays += r;
+        stats->threads = threads;
+        stats->tiles = tiles;
+    }
     return img;
 }
 

@@ -1,0 +1,42 @@
+# make dist: raytracer.tar.gz, the submission, which builds on a machine with only g++
+# and make:  tar -xf raytracer.tar.gz && make && ./raytracer scene.json
+#
+# It holds Makefile, mk/, include/, src/, scenes/ and README.md (the files git knows of,
+# committed or not, minus ignored ones), plus third_party/: the headers this build uses,
+# copied now from the Debian packages (nlohmann/ from nlohmann-json3-dev,
+# stb/stb_image_write.h and stb/stb_image.h from libstb-dev) with their copyright files.
+# The Makefile sees third_party/stb/stb_image_write.h and compiles with -Ithird_party
+# and src/image/stb_impl.cpp instead of linking libstb; mk/convert.mk leaves out XML
+# scenes and ./rtconvert where pugixml and tinyobjloader are missing.
+# The repository's own third_party/ is never filled (it is gitignored).
+#
+# make dist-check: builds the tarball in a fresh folder with the packaged headers and
+# libraries hidden (tests/dist/check_dist.sh), then renders scenes/showcase.json.
+DIST_TAR    := raytracer.tar.gz
+DIST_STAGE  := build/dist/stage
+DIST_FILES   = $(shell if git rev-parse --is-inside-work-tree >/dev/null 2>&1; then \
+                   git ls-files -co --exclude-standard -- Makefile README.md mk include src scenes | sort -u; \
+               else find Makefile README.md mk include src scenes -type f | sort; fi)
+DIST_NLOHMANN := /usr/include/nlohmann
+DIST_STB      := /usr/include/stb
+
+.PHONY: dist dist-check
+dist:
+	@test -f $(DIST_NLOHMANN)/json.hpp || { echo "make dist: $(DIST_NLOHMANN)/json.hpp missing (apt-get install nlohmann-json3-dev)"; exit 1; }
+	@test -f $(DIST_STB)/stb_image_write.h -a -f $(DIST_STB)/stb_image.h || { echo "make dist: $(DIST_STB)/stb_image*.h missing (apt-get install libstb-dev)"; exit 1; }
+	@rm -rf $(DIST_STAGE) && mkdir -p $(DIST_STAGE)/third_party/stb
+	@for f in $(DIST_FILES); do [ -f "$$f" ] && { mkdir -p "$(DIST_STAGE)/$$(dirname "$$f")"; cp -p "$$f" "$(DIST_STAGE)/$$f"; }; done; true
+	@cp -R $(DIST_NLOHMANN) $(DIST_STAGE)/third_party/nlohmann
+	@cp $(DIST_STB)/stb_image_write.h $(DIST_STB)/stb_image.h $(DIST_STAGE)/third_party/stb/
+	@cp /usr/share/doc/nlohmann-json3-dev/copyright $(DIST_STAGE)/third_party/nlohmann/COPYRIGHT 2>/dev/null || true
+	@cp /usr/share/doc/libstb-dev/copyright $(DIST_STAGE)/third_party/stb/COPYRIGHT 2>/dev/null || true
+	@{ [ -f third_party/README.md ] && cat third_party/README.md; echo; \
+	   echo "Copied by make dist on $$(date -u +%Y-%m-%d) from:"; echo; \
+	   dpkg-query -W -f '- $${Package} $${Version}\n' nlohmann-json3-dev libstb-dev 2>/dev/null || echo "- $(DIST_NLOHMANN), $(DIST_STB)"; \
+	 } > $(DIST_STAGE)/third_party/README.md
+	@rm -f $(DIST_TAR)
+	tar --sort=name --owner=0 --group=0 --numeric-owner -czf $(DIST_TAR) -C $(DIST_STAGE) .
+	@echo "$(DIST_TAR): $$(tar -tzf $(DIST_TAR) | grep -vc '/$$') files, $$(du -k $(DIST_TAR) | cut -f1) KiB"
+
+dist-check: dist
+	sh tests/dist/check_dist.sh $(DIST_TAR)

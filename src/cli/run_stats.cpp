@@ -1,0 +1,115 @@
+#include "run_stats.h"
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <thread>
+
+#include "rt/real.h"
+
+namespace rt {
+namespace cli {
+
+uint64_t peak_rss_bytes() {
+    struct rusage u {};
+    if (::getrusage(RUSAGE_SELF, &u) != 0) return 0;
+    return static_cast<uint64_t>(u.ru_maxrss) * 1024;  // Linux: KiB
+}
+
+std::string cpu_model() {
+    std::ifstream f("/proc/cpuinfo");
+    for (std::string line; std::getline(f, line);) {
+        if (line.rfind("model name", 0) != 0) continue;
+        const size_t colon = line.find(':');
+        if (colon == std::string::npos) break;
+        const size_t start = line.find_first_not_of(" \t", colon + 1);
+        return start == std::string::npos ? "unknown" : line.substr(start);
+    }
+    return "unknown";
+}
+
+bool stderr_is_terminal() { return ::isatty(STDERR_FILENO) == 1; }
+
+std::string stats_json(const std::vector<ImageRecord>& images, const std::string& version) {
+    using nlohmann::ordered_json;
+    ordered_json doc;
+    doc["raytracer"] = version;
+    doc["precision"] = sizeof(Real) == sizeof(float) ? "float" : "double";
+    doc["machine"] = {{"cpu", cpu_model()}, {"hardware_threads", std::thread::hardware_concurrency()}};
+    ordered_json list = ordered_json::array();
+    for (const ImageRecord& r : images) {
+        const RayCounts& rays = r.render_stats.rays;
+        ordered_json j;
+        j["scene"] = r.scene;
+        j["image"] = r.image;
+        j["camera"] = r.camera;
+        j["width"] = r.width;
+        j["height"] = r.height;
+        j["primitives"] = {{"triangles", r.triangles},
+                           {"spheres", r.spheres},
+                           {"planes", r.planes},
+                           {"lights", r.lights},
+                           {"degenerate_skipped", r.degenerate}};
+        j["threads"] = r.render_stats.threads;
+        j["cull"] = r.cull;
+        j["max_recursion_depth"] = r.max_recursion_depth;
+        j["shadow_ray_epsilon"] = r.shadow_ray_epsilon;
+        j["seconds"] = {{"parse", r.times.parse}, {"ply", r.times.ply},     {"setup", r.times.setup},
+                        {"bvh", r.times.bvh},     {"render", r.render},    {"write", r.write}};
+        j["rays"] = {{"camera", rays.camera},
+                     {"shadow", rays.shadow},
+                     {"reflection", rays.reflection},
+                     {"refraction", rays.refraction},
+                     {"total", rays.total()}};
+        j["rays_per_second"] = r.render > 0 ? double(rays.total()) / r.render : 0.0;
+        j["bvh"] = {{"nodes", r.bvh_nodes},
+                    {"depth", r.bvh_depth},
+                    {"max_leaf", r.bvh.max_leaf},
+                    {"bins", r.bvh.bins},
+                    {"split", r.bvh.sah ? "sah" : "median"}};
+        j["peak_rss_bytes"] = r.peak_rss;
+        list.push_back(std::move(j));
+    }
+    doc["images"] = std::move(list);
+    return doc.dump(2) + "\n";
+}
+
+void ProgressLine::start(const std::string& label) {
+    label_ = label;
+    t0_ = std::chrono::steady_clock::now();
+}
+
+void ProgressLine::update(int done, int total) {
+    if (!enabled_ || total <= 0) return;
+    const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+    char buf[512];
+    int n;
+    if (done > 0) {
+        const double left = elapsed * double(total - done) / double(done);
+        n = std::snprintf(buf, sizeof buf, "%s: %3d%%  %.1f s elapsed, ~%.1f s left", label_.c_str(),
+                          int(100.0 * done / total), elapsed, left);
+    } else {
+        n = std::snprintf(buf, sizeof buf, "%s:   0%%  %.1f s elapsed", label_.c_str(), elapsed);
+    }
+    if (n < 0) return;
+    const size_t len = std::min(static_cast<size_t>(n), sizeof buf - 1);
+    // Pad with spaces over a longer previous line, then return to the line's start.
+    std::fprintf(stderr, "\r%s%*s", buf, shown_ > len ? int(shown_ - len) : 0, "");
+    std::fflush(stderr);
+    shown_ = std::max(shown_, len);
+}
+
+void ProgressLine::clear() {
+    if (!enabled_ || shown_ == 0) return;
+    std::fprintf(stderr, "\r%*s\r", int(shown_), "");
+    std::fflush(stderr);
+    shown_ = 0;
+}
+
+}  // namespace cli
+}  // namespace rt

@@ -1,0 +1,173 @@
+// rtconvert's library side: which conversion a pair of file names asks for, and the
+// files each one writes. The conversions themselves live in src/loader (XML <-> JSON
+// trees, OBJ import) and obj_export.cpp / ply_writer.cpp.
+#include <cctype>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <string>
+
+#include "../loader/json_scene.h"
+#include "../loader/obj_import.h"
+#include "../loader/xml_json.h"
+#include "rt/convert.h"
+#include "rt/error.h"
+#include "rt/image.h"
+#include "rt/loader.h"
+
+namespace fs = std::filesystem;
+
+namespace rt {
+namespace {
+
+using ojson = nlohmann::ordered_json;
+
+std::string lower_extension(const std::string& path) {
+    const std::string name = fs::path(path).filename().string();
+    const size_t dot = name.find_last_of('.');
+    if (dot == std::string::npos) return "";
+    std::string ext = name.substr(dot);
+    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return ext;
+}
+
+std::string read_file(const std::string& path) {
+    std::error_code ec;
+    if (fs::is_directory(path, ec)) throw InputError(path + ": cannot read: Is a directory");
+    FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) throw InputError(path + ": cannot open: " + std::strerror(errno));
+    std::string out;
+    char buf[1 << 16];
+    size_t n;
+    while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) out.append(buf, n);
+    const bool bad = std::ferror(f) != 0;
+    const int e = errno;
+    std::fclose(f);
+    if (bad) throw InputError(path + ": cannot read: " + std::strerror(e));
+    return out;
+}
+
+// The folder a file is in, absolute and normalised.
+fs::path folder_of(const std::string& path) {
+    std::error_code ec;
+    fs::path p = fs::absolute(fs::path(path), ec).lexically_normal();
+    return p.parent_path();
+}
+
+// A relative _plyFile of a scene in `from` made to resolve from `to` instead.
+void rewrite_ply_paths(ojson& v, const fs::path& from, const fs::path& to) {
+    if (v.is_array()) {
+        for (ojson& e : v) rewrite_ply_paths(e, from, to);
+    } else if (v.is_object()) {
+        for (auto it = v.begin(); it != v.end(); ++it) {
+            if (it.key() == "_plyFile" && it->is_string()) {
+                const std::string rel = it->get<std::string>();
+                if (rel.empty() || rel[0] == '/') continue;
+                const fs::path target = (from / rel).lexically_normal();
+                fs::path moved = target.lexically_relative(to);
+                *it = moved.empty() ? target.string() : moved.string();
+            } else {
+                rewrite_ply_paths(*it, from, to);
+            }
+        }
+    }
+}
+
+std::string tree_text(const ojson& tree, SceneFormat format, const std::string& path) {
+    return format == SceneFormat::Xml ? json_tree_to_xml(tree, path) : tree.dump(2) + "\n";
+}
+
+// The output must not be the input (it would be overwritten before it is read back).
+void check_distinct(const std::string& input, const std::string& output) {
+    std::error_code ec;
+    if (fs::exists(output, ec) && fs::equivalent(input, output, ec))
+        throw InputError(output + ": is the input file; choose another output name");
+}
+
+}  // namespace
+
+SceneFormat scene_format_of(const std::string& path) {
+    const std::string ext = lower_extension(path);
+    if (ext == ".json") return SceneFormat::Json;
+    if (ext == ".xml") return SceneFormat::Xml;
+    if (ext == ".obj") return SceneFormat::Obj;
+    return SceneFormat::Unknown;
+}
+
+std::string xml_to_json_text(const std::string& xml_text, const std::string& path) {
+    return xml_to_json_tree(xml_text, path).dump(2) + "\n";
+}
+
+std::string json_to_xml_text(const std::string& json_text, const std::string& path) {
+    return json_tree_to_xml(parse_json_tree(json_text, path), path);
+}
+
+ConvertResult convert_file(const std::string& input, const std::string& output, const ConvertOptions& options) {
+    const SceneFormat from = scene_format_of(input), to = scene_format_of(output);
+    if (from == SceneFormat::Unknown)
+        throw InputError(input + ": unknown input format (the name must end in .json, .xml or .obj)");
+    if (to == SceneFormat::Unknown)
+        throw InputError(output + ": unknown output format (the name must end in .json, .xml or .obj)");
+    if (from == SceneFormat::Obj && to == SceneFormat::Obj)
+        throw InputError(output + ": OBJ to OBJ is not a conversion");
+    check_distinct(input, output);
+    ConvertResult result;
+    const fs::path out_dir = folder_of(output);
+    const std::string out_stem = fs::path(output).stem().string();
+
+    if (to == SceneFormat::Obj) {
+        SceneDesc scene = load_scene(input);
+        result.warnings = scene.warnings;
+        const std::string mtl_name = out_stem + ".mtl";
+        const ObjText text = scene_to_obj(scene, mtl_name, options.sphere_segments);
+        const std::string mtl_path = (out_dir / mtl_name).string();
+        write_file_atomic(output, text.obj);
+        write_file_atomic(mtl_path, text.mtl);
+        result.written = {output, mtl_path};
+        size_t triangles = 0;
+        for (const MeshDesc& m : scene.meshes) triangles += m.indices.size() / 3;
+        result.notes.push_back(std::to_string(scene.meshes.size()) + " meshes (" + std::to_string(triangles) +
+                               " triangles), " + std::to_string(scene.spheres.size()) + " spheres, " +
+                               std::to_string(scene.planes.size()) + " planes, " +
+                               std::to_string(scene.materials.size()) + " materials");
+        return result;
+    }
+
+    if (from == SceneFormat::Obj) {
+        ConvertOptions o = options;
+        if (o.width < 1 || o.height < 1) throw InputError(output + ": image size must be positive");
+        if (o.image_name.empty()) o.image_name = out_stem + ".png";
+        ObjImport imp = import_obj(input, o, out_stem);
+        result.warnings = std::move(imp.warnings);
+        result.notes = std::move(imp.notes);
+        const std::string text = tree_text(imp.scene, to, output);
+        result.written.push_back(output);
+        for (const ImportedMesh& m : imp.meshes) {
+            const std::string ply_path = (out_dir / m.ply_name).string();
+            write_ply(ply_path, m.positions, m.indices);
+            result.written.push_back(ply_path);
+        }
+        write_file_atomic(output, text);  // last, so that a scene file never names missing PLYs
+        return result;
+    }
+
+    // JSON / XML -> JSON / XML: the tree, with PLY paths following the output.
+    const std::string text = read_file(input);
+    ojson tree = from == SceneFormat::Xml ? xml_to_json_tree(text, input) : parse_json_tree(text, input);
+    const fs::path in_dir = folder_of(input);
+    if (in_dir != out_dir) rewrite_ply_paths(tree, in_dir, out_dir);
+    const std::string out_text = tree_text(tree, to, input);
+    // Not a check the conversion needs, but worth knowing: would the result render?
+    try {
+        const SceneDesc scene = scene_from_json(nlohmann::json(tree), output);
+        (void)scene;
+    } catch (const InputError& e) {
+        result.warnings.push_back(std::string(e.what()) + " (converted all the same)");
+    }
+    write_file_atomic(output, out_text);
+    result.written.push_back(output);
+    return result;
+}
+
+}  // namespace rt

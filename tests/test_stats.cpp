@@ -1,0 +1,358 @@
+// --stats, the ray counters, the progress line and the measurement switches
+// (--max-depth, --epsilon-scale, --bvh-*): the JSON has the documented fields with
+// plausible values, ray counts do not depend on the thread count and equal what
+// rt::render reports, the progress line appears on a terminal only, and the switches
+// change what they should and nothing else.
+#include <gtest/gtest.h>
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cstdlib>
+#include <cstring>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+#include "rt/bvh.h"
+#include "rt/loader.h"
+#include "rt/render.h"
+#include "rt/scene.h"
+#include "test_support.h"
+
+namespace {
+
+using json = nlohmann::json;
+
+// Our showcase scene (glass, a conductor, a mirror, a plane, two lights) at the given
+// size, plus a PLY mesh, written into `dir`; returns the scene's path.
+std::string write_scene(const std::string& dir, int width, int height, const std::string& image = "out.png") {
+    json scene = json::parse(read_text("scenes/showcase.json"));
+    json& cam = scene["Scene"]["Cameras"]["Camera"];
+    cam["ImageResolution"] = std::to_string(width) + " " + std::to_string(height);
+    cam["ImageName"] = image;
+    write_text(dir + "/tetra.ply",
+               "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
+               "element face 4\nproperty list uchar int vertex_indices\nend_header\n"
+               "-2.5 0 1\n-1.5 0 1\n-2 0 2\n-2 1 1.5\n3 0 2 1\n3 0 1 3\n3 1 2 3\n3 2 0 3\n");
+    scene["Scene"]["Objects"]["Mesh"].push_back(
+        {{"_id", "3"}, {"Material", "4"}, {"Faces", {{"_plyFile", "tetra.ply"}}}});
+    const std::string path = dir + "/scene.json";
+    write_text(path, scene.dump(2));
+    return path;
+}
+
+// Runs the raytracer with --stats; returns the parsed document (empty on failure).
+json run_stats(const std::vector<std::string>& extra, const std::string& scene, const TempDir& dir,
+               RunResult* result = nullptr) {
+    const std::string stats = dir / "stats.json";
+    std::vector<std::string> args = {"--stats", stats, "-o", dir.path()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    args.push_back(scene);
+    const RunResult r = run_raytracer(args);
+    if (result) *result = r;
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    if (r.exit_code != 0 || !file_exists(stats)) return json();
+    return json::parse(read_text(stats));
+}
+
+struct Rays {
+    uint64_t camera, shadow, reflection, refraction;
+};
+Rays rays_of(const json& image) {
+    const json& r = image.at("rays");
+    return {r.at("camera").get<uint64_t>(), r.at("shadow").get<uint64_t>(), r.at("reflection").get<uint64_t>(),
+            r.at("refraction").get<uint64_t>()};
+}
+
+TEST(Stats, JsonHasTheDocumentedFieldsWithPlausibleValues) {
+    TempDir dir;
+    const std::string scene = write_scene(dir.path(), 96, 54);
+    const json doc = run_stats({"-j", "2"}, scene, dir);
+    ASSERT_TRUE(doc.is_object());
+    EXPECT_EQ(doc.at("raytracer"), "raytracer 1.0");
+    EXPECT_TRUE(doc.at("precision") == "double" || doc.at("precision") == "float");
+    EXPECT_TRUE(doc.at("machine").at("cpu").is_string());
+    EXPECT_GE(doc.at("machine").at("hardware_threads").get<int>(), 0);
+    ASSERT_EQ(doc.at("images").size(), 1u);
+    const json& im = doc.at("images")[0];
+    EXPECT_EQ(im.at("scene"), scene);
+    EXPECT_EQ(im.at("image"), dir / "out.png");
+    EXPECT_EQ(im.at("camera"), 1);
+    EXPECT_EQ(im.at("width"), 96);
+    EXPECT_EQ(im.at("height"), 54);
+    const json& p = im.at("primitives");
+    EXPECT_EQ(p.at("triangles"), 2 + 3 + 4);
+    EXPECT_EQ(p.at("spheres"), 3);
+    EXPECT_EQ(p.at("planes"), 1);
+    EXPECT_EQ(p.at("lights"), 2);
+    EXPECT_EQ(p.at("degenerate_skipped"), 0);
+    EXPECT_EQ(im.at("threads"), 2);
+    EXPECT_EQ(im.at("cull"), true);
+    EXPECT_EQ(im.at("max_recursion_depth"), 6);
+    EXPECT_DOUBLE_EQ(im.at("shadow_ray_epsilon").get<double>(), 1e-3);
+    for (const char* k : {"parse", "ply", "setup", "bvh", "render", "write"}) {
+        const double s = im.at("seconds").at(k).get<double>();
+        EXPECT_GE(s, 0) << k;
+        EXPECT_LT(s, 60) << k;
+    }
+    EXPECT_GT(im.at("seconds").at("ply").get<double>(), 0);  // one PLY file was read
+    EXPECT_GT(im.at("seconds").at("render").get<double>(), 0);
+    const Rays r = rays_of(im);
+    EXPECT_EQ(r.camera, 96u * 54u);  // one camera ray per pixel
+    EXPECT_GT(r.shadow, 0u);         // two lights over a lit floor
+    EXPECT_GT(r.reflection, 0u);     // mirror, conductor, glass
+    EXPECT_GT(r.refraction, 0u);     // glass
+    EXPECT_LE(r.shadow, 2 * (r.camera + r.reflection + r.refraction));  // at most one per light per hit
+    EXPECT_EQ(im.at("rays").at("total").get<uint64_t>(), r.camera + r.shadow + r.reflection + r.refraction);
+    EXPECT_GT(im.at("rays_per_second").get<double>(), 0);
+    EXPECT_GE(im.at("bvh").at("nodes").get<int>(), 1);
+    EXPECT_GE(im.at("bvh").at("depth").get<int>(), 1);
+    EXPECT_EQ(im.at("bvh").at("max_leaf"), 8);
+    EXPECT_EQ(im.at("bvh").at("bins"), 16);
+    EXPECT_EQ(im.at("bvh").at("split"), "sah");
+    EXPECT_GT(im.at("peak_rss_bytes").get<uint64_t>(), 1u << 20);
+    EXPECT_LT(im.at("peak_rss_bytes").get<uint64_t>(), uint64_t(4) << 30);
+}
+
+TEST(Stats, OneRecordPerImageAcrossScenes) {
+    TempDir dir;
+    const std::string a = write_scene(dir.path(), 32, 16, "a.png");
+    const std::string sub = dir / "sub";
+    ASSERT_EQ(::mkdir(sub.c_str(), 0777), 0);
+    const std::string b = write_scene(sub, 16, 32, "b.png");
+    const std::string stats = dir / "stats.json";
+    const RunResult r = run_raytracer({"--stats=" + stats, "-o", dir.path(), a, b});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const json doc = json::parse(read_text(stats));
+    ASSERT_EQ(doc.at("images").size(), 2u);
+    EXPECT_EQ(doc["images"][0]["image"], dir / "a.png");
+    EXPECT_EQ(doc["images"][1]["image"], dir / "b.png");
+    EXPECT_EQ(doc["images"][1]["width"], 16);
+    EXPECT_EQ(rays_of(doc["images"][1]).camera, 16u * 32u);
+}
+
+TEST(Stats, RayCountsDoNotDependOnTheThreadCount) {
+    TempDir dir;
+    const std::string scene = write_scene(dir.path(), 80, 45);
+    const json one = run_stats({"-j", "1"}, scene, dir);
+    const json three = run_stats({"-j", "3"}, scene, dir);
+    ASSERT_FALSE(one.is_null());
+    ASSERT_FALSE(three.is_null());
+    EXPECT_EQ(one["images"][0]["threads"], 1);
+    EXPECT_EQ(three["images"][0]["threads"], 3);
+    EXPECT_EQ(one["images"][0]["rays"], three["images"][0]["rays"]);
+}
+
+TEST(Stats, RenderStatsOfTheLibraryEqualTheCommandLines) {
+    TempDir dir;
+    const std::string scene = write_scene(dir.path(), 64, 36);
+    for (const bool cull : {true, false}) {
+        const json doc = run_stats({"-j", "2", cull ? "--cull" : "--no-cull"}, scene, dir);
+        ASSERT_FALSE(doc.is_null());
+        const Rays cli = rays_of(doc["images"][0]);
+
+        const rt::Scene s = rt::build_scene(rt::load_scene(scene));
+        for (const int threads : {1, 2, 5}) {
+            rt::RenderOptions o;
+            o.threads = threads;
+            o.cull = cull;
+            rt::RenderStats st;
+            const rt::Image img = rt::render(s, 0, o, &st);
+            EXPECT_EQ(st.threads, threads);
+            EXPECT_EQ(st.tiles, 4 * 3);
+            EXPECT_EQ(st.rays.camera, cli.camera);
+            EXPECT_EQ(st.rays.shadow, cli.shadow);
+            EXPECT_EQ(st.rays.reflection, cli.reflection);
+            EXPECT_EQ(st.rays.refraction, cli.refraction);
+            EXPECT_EQ(st.rays.total(), doc["images"][0]["rays"]["total"].get<uint64_t>());
+            // The stats never change the picture.
+            rt::Image plain = rt::render(s, 0, o);
+            EXPECT_EQ(img.rgb, plain.rgb);
+        }
+    }
+}
+
+TEST(Stats, ProgressCallbackIsRareAndChangesNothing) {
+    TempDir dir;
+    const rt::Scene s = rt::build_scene(rt::load_scene(write_scene(dir.path(), 320, 180)));
+    rt::RenderOptions o;
+    o.threads = 2;
+    rt::RenderStats plain_stats;
+    const rt::Image plain = rt::render(s, 0, o, &plain_stats);
+    int calls = 0, last_done = -1, total = 0;
+    bool monotone = true;
+    o.progress = [&](int done, int tiles) {
+        ++calls;
+        monotone = monotone && done >= last_done && done <= tiles;
+        last_done = done;
+        total = tiles;
+    };
+    o.progress_interval = 0.001;
+    rt::RenderStats st;
+    const rt::Image img = rt::render(s, 0, o, &st);
+    EXPECT_EQ(img.rgb, plain.rgb);
+    EXPECT_EQ(st.rays.total(), plain_stats.rays.total());
+    EXPECT_TRUE(monotone);
+    if (calls > 0) {
+        EXPECT_EQ(total, 20 * 12);
+    }
+}
+
+TEST(Stats, NoProgressLineWhenStderrIsNotATerminal) {
+    TempDir dir;
+    const std::string scene = write_scene(dir.path(), 640, 360);
+    const RunResult r = run_raytracer({"-j", "1", "-o", dir.path(), scene});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.err.find('\r'), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find('%'), std::string::npos) << r.err;
+    const RunResult q = run_raytracer({"-q", "-o", dir.path(), scene});
+    ASSERT_EQ(q.exit_code, 0);
+    EXPECT_EQ(q.err, "");
+}
+
+// Runs ./raytracer with stderr (and stdout) on a new pseudo-terminal; returns what it wrote.
+std::string run_on_terminal(const std::vector<std::string>& args, int* exit_code) {
+    *exit_code = -1;
+    const int master = ::posix_openpt(O_RDWR | O_NOCTTY);
+    if (master < 0 || ::grantpt(master) != 0 || ::unlockpt(master) != 0) return "no pty";
+    const char* slave_name = ::ptsname(master);
+    if (!slave_name) return "no pty";
+    const std::string slave_path = slave_name;
+    std::vector<std::string> storage = {raytracer_path()};
+    storage.insert(storage.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (std::string& s : storage) argv.push_back(s.data());
+    argv.push_back(nullptr);
+    const pid_t pid = ::fork();
+    if (pid == 0) {
+        ::setsid();
+        const int slave = ::open(slave_path.c_str(), O_RDWR);
+        const int null = ::open("/dev/null", O_RDONLY);
+        if (slave < 0 || null < 0 || ::dup2(null, 0) < 0 || ::dup2(slave, 1) < 0 || ::dup2(slave, 2) < 0) _exit(127);
+        ::close(master);
+        ::alarm(120);
+        ::execv(argv[0], argv.data());
+        _exit(127);
+    }
+    std::string out;
+    char buf[4096];
+    for (;;) {
+        const ssize_t n = ::read(master, buf, sizeof buf);
+        if (n > 0) out.append(buf, size_t(n));
+        else if (n < 0 && errno == EINTR) continue;
+        else break;  // EIO once the child has closed the terminal
+    }
+    ::close(master);
+    int status = 0;
+    while (::waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    }
+    *exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+    return out;
+}
+
+TEST(Stats, ProgressLineOnATerminalClearedBeforeTheSummary) {
+    TempDir dir;
+    // Long enough (about a second on one thread) for several 50 ms updates.
+    const std::string scene = write_scene(dir.path(), 1280, 720);
+    int code = 0;
+    const std::string out = run_on_terminal({"-j", "1", "-o", dir.path(), scene}, &code);
+    ASSERT_EQ(code, 0) << out;
+    EXPECT_NE(out.find('\r'), std::string::npos) << out;
+    EXPECT_NE(out.find("% "), std::string::npos) << out;
+    EXPECT_NE(out.find("s elapsed"), std::string::npos) << out;
+    // The summary is the last line, on a line of its own: cleared, then written.
+    const std::string summary = dir / "out.png: 1280x720, 9 triangles, 3 spheres";
+    const size_t at = out.rfind(summary);
+    ASSERT_NE(at, std::string::npos) << out;
+    EXPECT_EQ(out[at - 1], '\r');
+    EXPECT_EQ(out.find('%', at), std::string::npos);
+
+    const std::string quiet = run_on_terminal({"-q", "-j", "1", "-o", dir.path(), scene}, &code);
+    EXPECT_EQ(code, 0);
+    EXPECT_EQ(quiet, "");
+}
+
+TEST(Stats, MeasurementSwitches) {
+    TempDir dir;
+    const std::string scene = write_scene(dir.path(), 64, 36);
+    const json base = run_stats({}, scene, dir);
+    ASSERT_FALSE(base.is_null());
+    rt::Image ref;
+    ASSERT_TRUE(load_png(dir / "out.png", ref));
+
+    // MaxRecursionDepth 0: camera and shadow rays only.
+    const json flat = run_stats({"--max-depth", "0"}, scene, dir);
+    ASSERT_FALSE(flat.is_null());
+    EXPECT_EQ(flat["images"][0]["max_recursion_depth"], 0);
+    EXPECT_EQ(rays_of(flat["images"][0]).reflection, 0u);
+    EXPECT_EQ(rays_of(flat["images"][0]).refraction, 0u);
+    EXPECT_EQ(rays_of(flat["images"][0]).camera, rays_of(base["images"][0]).camera);
+
+    const json eps = run_stats({"--epsilon-scale", "10"}, scene, dir);
+    ASSERT_FALSE(eps.is_null());
+    EXPECT_DOUBLE_EQ(eps["images"][0]["shadow_ray_epsilon"].get<double>(), 1e-2);
+
+    // The BVH's shape never changes the picture, nor the rays traced.
+    for (const std::vector<std::string>& bvh : std::vector<std::vector<std::string>>{
+             {"--bvh-leaf", "1"}, {"--bvh-leaf", "16", "--bvh-bins", "4"}, {"--bvh-split", "median"}}) {
+        const json doc = run_stats(bvh, scene, dir);
+        ASSERT_FALSE(doc.is_null());
+        rt::Image img;
+        ASSERT_TRUE(load_png(dir / "out.png", img));
+        EXPECT_EQ(img.rgb, ref.rgb) << bvh[0] << " " << bvh[1];
+        EXPECT_EQ(doc["images"][0]["rays"], base["images"][0]["rays"]);
+    }
+    const json leaf = run_stats({"--bvh-leaf", "2", "--bvh-bins", "8", "--bvh-split", "median"}, scene, dir);
+    ASSERT_FALSE(leaf.is_null());
+    EXPECT_EQ(leaf["images"][0]["bvh"]["max_leaf"], 2);
+    EXPECT_EQ(leaf["images"][0]["bvh"]["bins"], 8);
+    EXPECT_EQ(leaf["images"][0]["bvh"]["split"], "median");
+
+    for (const std::vector<std::string>& bad : std::vector<std::vector<std::string>>{
+             {"--max-depth", "-1"}, {"--epsilon-scale", "0"}, {"--epsilon-scale", "x"}, {"--bvh-leaf", "0"},
+             {"--bvh-bins", "17"}, {"--bvh-split", "fast"}, {"--stats"}}) {
+        std::vector<std::string> args = bad;
+        if (bad.size() > 1) args.push_back(scene);
+        const RunResult r = run_raytracer(args);
+        EXPECT_EQ(r.exit_code, 2) << bad[0] << ": " << r.err;
+    }
+}
+
+TEST(Stats, UnwritableStatsFileIsAnError) {
+    TempDir dir;
+    const std::string scene = write_scene(dir.path(), 16, 16);
+    const RunResult r = run_raytracer({"--stats", dir / "no/such/folder/stats.json", "-o", dir.path(), scene});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_NE(r.err.find("stats.json: cannot write"), std::string::npos) << r.err;
+    EXPECT_TRUE(file_exists(dir / "out.png"));  // the image itself was written
+}
+
+// Default build options are the tuned constants: the tree is the same, node for node.
+TEST(Stats, DefaultBvhOptionsBuildTheSameTree) {
+    TempDir dir;
+    const rt::SceneDesc d = rt::load_scene(write_scene(dir.path(), 16, 16));
+    const rt::Scene a = rt::build_scene(d);
+    rt::BvhBuildOptions o;
+    EXPECT_EQ(o.max_leaf, 8u);
+    EXPECT_EQ(o.bins, 16);
+    EXPECT_FLOAT_EQ(o.traversal_cost, 1.0f);
+    EXPECT_TRUE(o.sah);
+    const rt::Scene b = rt::build_scene(d, o);
+    ASSERT_EQ(a.bvh.nodes.size(), b.bvh.nodes.size());
+    EXPECT_EQ(0, std::memcmp(a.bvh.nodes.begin(), b.bvh.nodes.begin(), a.bvh.nodes.size() * sizeof(rt::Bvh4Node)));
+    EXPECT_EQ(a.bvh.prims, b.bvh.prims);
+    o.max_leaf = 1;
+    const rt::Scene c = rt::build_scene(d, o);
+    for (const rt::Bvh4Node& n : c.bvh.nodes)
+        for (int i = 0; i < 4; ++i)
+            if (n.is_leaf(i) && n.child[i] != rt::Bvh4Node::kEmpty) {
+                EXPECT_LE(n.count[i], 1);
+            }
+}
+
+}  // namespace
