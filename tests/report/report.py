@@ -47,6 +47,7 @@ import tempfile
 import threading
 import time
 
+MAX_REPEATS = 150  # runs repeated because the machine was busy, in all
 REPO = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
 
 
@@ -202,8 +203,10 @@ class Runner:
             cmd = [binary, "-q", "-j", str(self.threads), "--stats", stats, "-o", out] + options + [scene.path]
             err_path = os.path.join(tmp, "stderr")
             # A run during which other processes used more than a quarter of a core is
-            # repeated (up to 4 times): the machine may be shared.
-            for attempt in range(5):
+            # repeated (twice at most, and at most MAX_REPEATS times in all: on a machine
+            # that stays busy the report would take too long); the least disturbed attempt counts.
+            best = None
+            for attempt in range(3):
                 busy0 = cpu_busy_seconds()
                 t0 = time.perf_counter()
                 with open(err_path, "wb") as err:
@@ -219,16 +222,17 @@ class Runner:
                     with open(err_path, encoding="utf-8", errors="replace") as f:
                         raise RuntimeError(f"exit {p.returncode}: {f.read().strip()[-400:]}")
                 disturbed = others > 0.25 * wall + 0.02
-                if not disturbed:
+                with open(stats, encoding="utf-8") as f:
+                    doc = json.load(f)
+                images = {os.path.relpath(rec["image"], out): rec for rec in doc["images"]}
+                run = {"wall": wall, "cpu": usage.ru_utime + usage.ru_stime, "others_cpu": others,
+                       "disturbed": disturbed, "images": images}
+                if best is None or others / wall < best["others_cpu"] / best["wall"]:
+                    best = run
+                if not disturbed or self.repeated >= MAX_REPEATS:
                     break
                 self.repeated += 1
-            with open(stats, encoding="utf-8") as f:
-                doc = json.load(f)
-            images = {}
-            for rec in doc["images"]:
-                images[os.path.relpath(rec["image"], out)] = rec
-            return {"wall": wall, "cpu": usage.ru_utime + usage.ru_stime, "others_cpu": others,
-                    "disturbed": disturbed, "images": images}, out
+            return best, out
         finally:
             shutil.rmtree(tmp, ignore_errors=True)
 
@@ -626,9 +630,10 @@ def main():
           f"(`-j {a.threads}`); {m['compiler']}; commit {m['commit']}; {m['date']}. Times are medians of "
           f"{runs} run{'s' if runs > 1 else ''} of each configuration (the raytracer's `--stats` figures: "
           f"render = tracing only, BVH build separately), runs interleaved across configurations. "
-          f"Made by `make report{' report-quick' if a.quick else ''}` (tests/report/report.py). "
+          f"Made by `make report{'-quick' if a.quick else ''}` (tests/report/report.py). "
           f"A run during which other processes used more than a quarter of a core was repeated "
-          f"(up to 4 times): {R.repeated} repeats; {still_disturbed} of {n_runs} runs kept were still disturbed.")
+          f"(twice at most, {MAX_REPEATS} times in all): {R.repeated} repeats; {still_disturbed} of "
+          f"{n_runs} runs kept were still disturbed.")
 
     # ---- blog table ----
     doc.h(2, "Back-face culling off and on")
