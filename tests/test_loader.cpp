@@ -382,7 +382,7 @@ TEST(LoaderValid, LookAtCameraExtents) {
 
     // Portrait: 200 x 400 gives right = top / 2.
     j["Scene"]["Cameras"]["Camera"]["ImageResolution"] = "200 400";
-    const rt::CameraDesc& p = parse(j.dump()).cameras.at(0);
+    const rt::CameraDesc p = parse(j.dump()).cameras.at(0);
     EXPECT_NEAR(p.top, top, kClose);
     EXPECT_NEAR(p.right, top / 2, kClose);
 }

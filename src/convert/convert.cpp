@@ -10,6 +10,7 @@
 
 #include "../loader/json_scene.h"
 #include "../loader/obj_import.h"
+#include "../loader/text_file.h"
 #include "../loader/xml_json.h"
 #include "rt/convert.h"
 #include "rt/error.h"
@@ -32,21 +33,6 @@ std::string lower_extension(const std::string& path) {
     return ext;
 }
 
-std::string read_file(const std::string& path) {
-    std::error_code ec;
-    if (fs::is_directory(path, ec)) throw InputError(path + ": cannot read: Is a directory");
-    FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) throw InputError(path + ": cannot open: " + std::strerror(errno));
-    std::string out;
-    char buf[1 << 16];
-    size_t n;
-    while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) out.append(buf, n);
-    const bool bad = std::ferror(f) != 0;
-    const int e = errno;
-    std::fclose(f);
-    if (bad) throw InputError(path + ": cannot read: " + std::strerror(e));
-    return out;
-}
 
 // The folder a file is in, absolute and normalised.
 fs::path folder_of(const std::string& path) {
@@ -153,7 +139,7 @@ ConvertResult convert_file(const std::string& input, const std::string& output, 
     }
 
     // JSON / XML -> JSON / XML: the tree, with PLY paths following the output.
-    const std::string text = read_file(input);
+    const std::string text = read_text_file(input);
     ojson tree = from == SceneFormat::Xml ? xml_to_json_tree(text, input) : parse_json_tree(text, input);
     const fs::path in_dir = folder_of(input);
     if (in_dir != out_dir) rewrite_ply_paths(tree, in_dir, out_dir);

@@ -19,6 +19,7 @@
 #include "rt/error.h"
 #include "rt/loader.h"
 #include "rt/ply.h"
+#include "text_file.h"
 
 namespace rt {
 namespace {
@@ -44,10 +45,6 @@ const char* type_name(const json& v) {
     }
 }
 
-std::string dirname_of(const std::string& path) {
-    const size_t slash = path.find_last_of('/');
-    return slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
-}
 
 class Loader {
 public:
@@ -559,16 +556,8 @@ SceneDesc scene_from_json(const json& root, const std::string& path) {
 }
 
 SceneDesc load_scene(const std::string& path) {
-    // Folders and devices are refused up front: reading /dev/zero would never end.
-    struct stat st;
-    if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISFIFO(st.st_mode))
-        throw InputError(path + ": cannot read: " + (S_ISDIR(st.st_mode) ? "is a folder" : "not a regular file"));
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw InputError(path + ": cannot open: " + std::strerror(errno));
-    std::ostringstream ss;
-    ss << in.rdbuf();
-    if (in.bad()) throw InputError(path + ": cannot read: " + std::strerror(errno));
-    return is_xml_path(path) ? parse_scene_xml(ss.str(), path) : parse_scene(ss.str(), path);
+    const std::string text = read_text_file(path);
+    return is_xml_path(path) ? parse_scene_xml(text, path) : parse_scene(text, path);
 }
 
 }  // namespace rt

@@ -20,6 +20,7 @@
 #include <utility>
 
 #include "obj_import.h"
+#include "text_file.h"
 #include "rt/error.h"
 
 namespace rt {
@@ -40,25 +41,6 @@ std::string num(double d) {
 
 std::string vec(const V3& v) { return num(v[0]) + " " + num(v[1]) + " " + num(v[2]); }
 
-std::string dirname_of(const std::string& path) {
-    const size_t slash = path.find_last_of('/');
-    return slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
-}
-
-// The whole file; InputError "<path>: cannot open|cannot read: <reason>".
-std::string read_whole(const std::string& path) {
-    FILE* f = std::fopen(path.c_str(), "rb");
-    if (!f) throw InputError(path + ": cannot open: " + std::strerror(errno));
-    std::string out;
-    char buf[1 << 16];
-    size_t n;
-    while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) out.append(buf, n);
-    const bool bad = std::ferror(f) != 0;
-    const int e = errno;
-    std::fclose(f);
-    if (bad) throw InputError(path + ": cannot read: " + std::strerror(e));
-    return out;
-}
 
 // Reads mtllib files relative to the OBJ file. A library that does not exist is a
 // warning (the default material is used); one that exists but cannot be read is an error.
@@ -77,7 +59,7 @@ public:
         try {
             if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode))
                 throw InputError(path + ": cannot read: not a regular file");
-            const std::string text = read_whole(path);
+            const std::string text = read_text_file(path);
             std::istringstream in(text);
             std::string w, e;
             tinyobj::LoadMtl(matMap, materials, &in, &w, &e);
@@ -217,7 +199,7 @@ V3 normalized(const V3& a) {
 
 ObjImport import_obj(const std::string& obj_path, const ConvertOptions& options, const std::string& ply_prefix) {
     ObjImport out;
-    const std::string text = read_whole(obj_path);
+    const std::string text = read_text_file(obj_path);
 
     tinyobj::attrib_t attrib;
     std::vector<tinyobj::shape_t> shapes;

@@ -1,0 +1,35 @@
+#include "text_file.h"
+
+#include <sys/stat.h>
+
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+
+#include "rt/error.h"
+
+namespace rt {
+
+std::string read_text_file(const std::string& path) {
+    struct stat st;
+    if (::stat(path.c_str(), &st) == 0 && !S_ISREG(st.st_mode) && !S_ISFIFO(st.st_mode))
+        throw InputError(path + ": cannot read: " + (S_ISDIR(st.st_mode) ? "is a folder" : "not a regular file"));
+    FILE* f = std::fopen(path.c_str(), "rb");
+    if (!f) throw InputError(path + ": cannot open: " + std::strerror(errno));
+    std::string out;
+    char buf[1 << 16];
+    size_t n;
+    while ((n = std::fread(buf, 1, sizeof buf, f)) > 0) out.append(buf, n);
+    const bool bad = std::ferror(f) != 0;
+    const int e = errno;
+    std::fclose(f);
+    if (bad) throw InputError(path + ": cannot read: " + std::strerror(e));
+    return out;
+}
+
+std::string dirname_of(const std::string& path) {
+    const size_t slash = path.find_last_of('/');
+    return slash == std::string::npos ? std::string() : path.substr(0, slash + 1);
+}
+
+}  // namespace rt
