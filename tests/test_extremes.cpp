@@ -220,9 +220,8 @@ json read_official(const std::string& name) {
 
 json read_showcase() {
     // The repo's own scene: inline geometry only, every material type.
-    for (const char* p : {"scenes/showcase.json", "../scenes/showcase.json", "../../scenes/showcase.json"})
-        if (file_exists(p)) return json::parse(read_text(p));
-    return json();
+    const std::string p = repo_file("scenes/showcase.json");
+    return file_exists(p) ? json::parse(read_text(p)) : json();
 }
 
 // Scenes used for scale, translation and determinism: official inline-geometry scenes

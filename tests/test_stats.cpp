@@ -31,7 +31,7 @@ using json = nlohmann::json;
 // Our showcase scene (glass, a conductor, a mirror, a plane, two lights) at the given
 // size, plus a PLY mesh, written into `dir`; returns the scene's path.
 std::string write_scene(const std::string& dir, int width, int height, const std::string& image = "out.png") {
-    json scene = json::parse(read_text("scenes/showcase.json"));
+    json scene = json::parse(read_text(repo_file("scenes/showcase.json")));
     json& cam = scene["Scene"]["Cameras"]["Camera"];
     cam["ImageResolution"] = std::to_string(width) + " " + std::to_string(height);
     cam["ImageName"] = image;

@@ -69,6 +69,14 @@ TempDir::~TempDir() {
 
 std::string raytracer_path() { return g_start_dir + "/raytracer"; }
 
+std::string repo_file(const std::string& relative) {
+    for (const char* up : {"/", "/../", "/../../"}) {
+        const std::string p = g_start_dir + up + relative;
+        if (file_exists(p)) return p;
+    }
+    return relative;
+}
+
 RunResult run_raytracer(const std::vector<std::string>& args, const std::string& cwd,
                         unsigned timeout_seconds) {
     return run_program(raytracer_path(), args, cwd, timeout_seconds);

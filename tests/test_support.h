@@ -44,6 +44,11 @@ RunResult run_raytracer(const std::vector<std::string>& args, const std::string&
 // The absolute path run_raytracer executes.
 std::string raytracer_path();
 
+// A file of this repository (e.g. "scenes/showcase.json") found from where the tests
+// run: the repo root (make test) or a build folder below it (make check-asan).
+// Returns `relative` itself when it is nowhere to be found.
+std::string repo_file(const std::string& relative);
+
 // run_raytracer for any program (an absolute path), e.g. rtconvert_path(): the repo's
 // ./rtconvert, resolved like raytracer_path().
 RunResult run_program(const std::string& exe, const std::vector<std::string>& args, const std::string& cwd = "",
