@@ -34,7 +34,8 @@ struct TraceOptions {
 };
 
 // Rays traced, by kind: one camera ray per pixel; one shadow ray per light that
-// faces a shaded point; reflection and refraction rays as they are spawned.
+// faces a shaded point from farther than 2 ShadowRayEpsilon; reflection and refraction
+// rays as they are spawned.
 struct RayCounts {
     uint64_t camera = 0, shadow = 0, reflection = 0, refraction = 0;
     uint64_t total() const { return camera + shadow + reflection + refraction; }

@@ -51,8 +51,10 @@ struct Integrator {
             const Vec3 so_to_light = light.position - so;
             const Real dist = length(so_to_light);
             uint32_t* hint = cache ? &cache->last_occluder[li] : nullptr;
-            ++rays.shadow;
-            if (dist > 2 * eps && any_hit(s, Ray{so, so_to_light / dist}, 0, dist - eps, hint)) continue;
+            if (dist > 2 * eps) {  // a light within 2 eps of the point is never occluded
+                ++rays.shadow;
+                if (any_hit(s, Ray{so, so_to_light / dist}, 0, dist - eps, hint)) continue;
+            }
             const Vec3 e = light.intensity / d2;  // irradiance E = I / d^2 (spec 2.8)
             const Vec3 h = normalize(l + to_eye);
             const Real ndoth = std::fmax(Real(0), dot(n, h));
