@@ -48,6 +48,13 @@ void write_file_atomic(const std::string& path, const std::string& bytes) {
 }
 
 void write_png(const Image& image, const std::string& path) {
+    // stb tries five row filters per row and deflates at level 8 by default. The
+    // "up" filter alone at level 4 encodes 29-49% faster for 0.6-8% more bytes
+    // (tower_smooth 0.168 -> 0.120 s, berserker_smooth 0.096 -> 0.052 s, measured
+    // 2026-11-22); the pixels are the same, PNG being lossless. Set here, on the one
+    // thread that writes images.
+    stbi_write_force_png_filter = 2;
+    stbi_write_png_compression_level = 4;
     std::string bytes;
     if (!stbi_write_png_to_func(append_bytes, &bytes, image.width, image.height, 3, image.rgb.data(),
                                 image.width * 3))
