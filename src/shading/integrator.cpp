@@ -1,6 +1,7 @@
 // The recursive Whitted integrator (spec 2.6-2.8, section 3 "Material"), with the
 // conventions the course's reference images imply (reference-conventions.md).
 #include <cmath>
+#include <limits>
 
 #include "rt/intersect.h"
 #include "rt/scene.h"
@@ -21,6 +22,7 @@ constexpr int kNoMedium = -1;
 constexpr Real kMinWeight = Real(1e-4);
 
 inline Real max_component(Vec3 v) { return std::fmax(v.x, std::fmax(v.y, v.z)); }
+inline Real max_abs(Vec3 v) { return std::fmax(std::fabs(v.x), std::fmax(std::fabs(v.y), std::fabs(v.z))); }
 
 struct Integrator {
     const Scene& s;
@@ -39,8 +41,13 @@ struct Integrator {
             const Vec3 l = to_light / std::sqrt(d2);
             const Real ndotl = dot(n, l);
             // Nothing to add: diffuse is max(0, n.l) and the specular term is
-            // dropped when n.l <= 0 (reference-conventions.md, "Shading").
-            if (!(ndotl > 0)) continue;
+            // dropped when n.l <= 0 (reference-conventions.md, "Shading"). n.l
+            // within the rounding error of p counts as 0: a light lying in the
+            // surface's plane would otherwise switch the specular term on and off
+            // from pixel to pixel (its irradiance is huge that close).
+            const Real noise = 8 * std::numeric_limits<Real>::epsilon() *
+                               (max_abs(p) + max_abs(light.position)) / std::sqrt(d2);
+            if (!(ndotl > noise)) continue;
             // Shadow ray from p + n * ShadowRayEpsilon (spec 3), never culled. It
             // stops eps short of the light, so a light lying on a surface is not
             // hidden by that surface at random. It starts at t = 0: the references
