@@ -81,7 +81,6 @@ struct BvhBuildOptions {
 struct Bvh {
     NodeArray nodes;              // nodes[0] is the root (absent when there are no primitives)
     std::vector<uint32_t> prims;  // primitive ids in leaf order
-    BuildBox root_box{};          // bounds of everything
     int depth = 0;                // of the 4-wide tree, root = 1
 
     // Builds over `boxes[i]` (one box per primitive id i); frees `boxes`.

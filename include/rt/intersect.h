@@ -15,7 +15,6 @@ struct Scene;
 // in 2D. Rays through a shared edge or vertex hit at least one of its triangles.
 struct RayPre {
     Ray ray;
-    Vec3 inv_dir;
     int kx, ky, kz;
     Real sx, sy, sz;
 };
@@ -23,7 +22,6 @@ struct RayPre {
 inline RayPre prepare(const Ray& r) {
     RayPre p;
     p.ray = r;
-    p.inv_dir = {Real(1) / r.dir.x, Real(1) / r.dir.y, Real(1) / r.dir.z};
     Real ax = std::fabs(r.dir.x), ay = std::fabs(r.dir.y), az = std::fabs(r.dir.z);
     p.kz = (ax > ay) ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
     p.kx = (p.kz + 1) % 3;

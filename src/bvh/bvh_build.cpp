@@ -380,10 +380,6 @@ void Bvh::build(std::vector<BuildBox>&& boxes, const BvhBuildOptions& options) {
     Builder b{boxes.data(), nodes, next, max_depth, spare, opt};
     Range root{0, n, {}, {}, false};
     b.bounds(root);
-    for (int a = 0; a < 3; ++a) {
-        root_box.lo[a] = root.box.lo[a];
-        root_box.hi[a] = root.box.hi[a];
-    }
     Range l, r;
     if (b.split(root, 1, l, r)) {
         b.build(0, l, r, 1);
