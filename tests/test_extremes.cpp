@@ -723,17 +723,43 @@ TEST(ExtremesFinite, LightsOnSurfaces) {
     // One light at a time, exactly on the plane (where the centre pixel's ray meets it:
     // odd resolution, so that ray is exactly (0, 0, -1)), on a sphere's surface, on a
     // triangle's vertex and inside a triangle. Where a light sits on a surface either
-    // side's answer is right, so the image must match the image with the light moved
-    // 1e-4 to one side or the other along the surface normal -- not a noisy mixture.
+    // side's answer is right, so the image must match (>= 99.5% of pixels within one
+    // level) the image with the light moved a distance h off the surface along its
+    // normal, to one side or the other -- not a noisy mixture of lit and shadowed.
+    //
+    // How far h may be depends on the surface's curvature. Moving a light h off a flat
+    // surface moves the shadows by O(h): h = 1e-4 changes nothing visible. Moving it h
+    // off a sphere of radius r turns the sphere's grazing (tangent) directions by
+    // sqrt(2h/r), so the shadow terminator the sphere casts moves with it -- a real
+    // change of the scene, not noise. The renderer resolves grazing directions no
+    // finer than its own band: shadow rays end eps short of the light, so rays that
+    // cross the sphere within eps of the light are not blocked, a band of about
+    // eps/(2r) around the tangent plane. So for the sphere h is chosen to turn the
+    // terminator by at most 1/8 of that band, sqrt(2h/r) <= eps/(16r), i.e.
+    // h = eps^2 / (512 r) (9.8e-9 here for eps 1e-3, r 0.2; 1e-4 for flat surfaces).
+    // That is still 7 orders of magnitude above the rounding error of the intersection
+    // tests, so a light that a surface occludes or not by the last bit of the
+    // arithmetic still fails: with shadow rays ending at the light instead of eps short
+    // of it, the sphere case measured 93.88% and 53 dark speckles (at most 1 with the
+    // light moved off), the vertex 90.00% and 60 (6), inside a triangle 74.51% and 128 (6).
+    //
+    // Measured 2026-11-22 for the sphere (49x49, eps 1e-3, r 0.2), pixels matching the
+    // light on the surface, light moved h outwards / inwards: h 1e-4: 98.71% / 97.92%,
+    // 1e-6: 99.42% / 99.79%, 1e-7: 99.96% / 99.96%, 1e-8 and below: 100% / 100%. The
+    // pixels that differ all lie in rows 19-21, the terminator the sphere's tangent
+    // plane casts on the triangle and the wall (a contiguous band along the row, none
+    // elsewhere), and the images converge to ours as h -> 0: geometry, not noise.
     struct Light {
         std::string name;
         double p[3], n[3];
+        double radius;  // of curvature at the light; 0 for flat
     };
+    const double eps = 1e-3;  // the base scene's ShadowRayEpsilon
     const std::vector<Light> lights = {
-        {"on the plane", {0, 0, -4}, {0, 0, 1}},
-        {"on the sphere", {0.6, 0.5, -2.5}, {0, 1, 0}},
-        {"on a triangle's vertex", {-1, -1, -3}, {0, 0, 1}},
-        {"inside a triangle", {0, 0, -3}, {0, 0, 1}},
+        {"on the plane", {0, 0, -4}, {0, 0, 1}, 0},
+        {"on the sphere", {0.6, 0.5, -2.5}, {0, 1, 0}, 0.2},
+        {"on a triangle's vertex", {-1, -1, -3}, {0, 0, 1}, 0},
+        {"inside a triangle", {0, 0, -3}, {0, 0, 1}, 0},
     };
     auto render_with = [](const double p[3]) {
         json j = base_scene("49 49");
@@ -746,31 +772,36 @@ TEST(ExtremesFinite, LightsOnSurfaces) {
         j["Scene"]["Lights"]["PointLight"]["Position"] = fmt3(p[0], p[1], p[2]);
         return render_counted(build(j), 0);
     };
-    std::string noisy;
+    // % of pixels within one level of the light moved h to the better of the two sides;
+    // `side_speckles` gets the larger of the two sides' dark-speckle counts.
+    auto best_match = [&](const Light& l, const Counted& r, double h, long* side_speckles = nullptr) {
+        double best = 0;
+        for (double side : {h, -h}) {
+            const double q[3] = {l.p[0] + side * l.n[0], l.p[1] + side * l.n[1], l.p[2] + side * l.n[2]};
+            const Counted o = render_with(q);
+            EXPECT_EQ(o.nonfinite, 0) << l.name << ", light moved " << side;
+            best = std::max(best, 100 - compare(r.img, o.img).pct_over_1);
+            if (side_speckles) *side_speckles = std::max(*side_speckles, speckles(o.img));
+        }
+        return best;
+    };
     for (const Light& l : lights) {
         const Counted r = render_with(l.p);
         report("light " + l.name, r);
         EXPECT_EQ(r.nonfinite, 0) << l.name;
-        double best = 0;
-        for (double side : {1e-4, -1e-4}) {
-            const double q[3] = {l.p[0] + side * l.n[0], l.p[1] + side * l.n[1], l.p[2] + side * l.n[2]};
-            const Counted o = render_with(q);
-            EXPECT_EQ(o.nonfinite, 0) << l.name;
-            best = std::max(best, 100 - compare(r.img, o.img).pct_over_1);
-        }
-        std::printf("[extremes]   light %s: %.2f%% of pixels match the light moved 1e-4 off the surface\n",
-                    l.name.c_str(), best);
-        if (best < 99.5) noisy += " light " + l.name + ": " + std::to_string(best) + "% match;";
+        const double h = l.radius > 0 ? std::min(1e-4, eps * eps / (512 * l.radius)) : 1e-4;
+        long side_speckles = 0;
+        const double best = best_match(l, r, h, &side_speckles);
+        std::printf("[extremes]   light %s: %.2f%% of pixels match the light moved %.2g off the surface\n",
+                    l.name.c_str(), best, h);
+        if (h != 1e-4)  // for the record: the coarser yardstick moves the terminator
+            std::printf("[extremes]   light %s: (%.2f%% match the light moved 1e-4: the terminator moves)\n",
+                        l.name.c_str(), best_match(l, r, 1e-4));
+        EXPECT_GE(best, 99.5) << "light " << l.name << " (moved " << h << "): a noisy mixture of both sides";
+        // The speckle detector also flags the corners of true shadows, so the yardstick
+        // is the light moved off: no more dark speckles than either side has.
+        EXPECT_LE(speckles(r.img), side_speckles) << "light " << l.name << ":" << speckle_text(r.img);
     }
-    if (!noisy.empty() && !run_pending()) {
-        // pending fix in src/shading/integrator.cpp: the shadow ray is tested on
-        // (0, distance to the light), so a surface passing through the light occludes or
-        // not by the last bit of the arithmetic: speckled noise on the surfaces it
-        // shadows. Ending the shadow ray short of the light (for example at
-        // dist - ShadowRayEpsilon) gives one side's answer everywhere.
-        GTEST_SKIP() << "pending fix in src/shading/integrator.cpp: a light on a surface gives noise:" << noisy;
-    }
-    EXPECT_TRUE(noisy.empty()) << noisy;
 }
 
 TEST(ExtremesFinite, FacingMirrorsAtDepthZeroAndFifty) {
