@@ -26,6 +26,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
+#include <limits>
 #include <string>
 #include <thread>
 #include <vector>
@@ -801,6 +802,11 @@ TEST(ExtremesFinite, LightsOnSurfaces) {
         report("light " + l.name, r);
         EXPECT_EQ(r.nonfinite, 0) << l.name;
         const double h = l.radius > 0 ? std::min(1e-4, eps * eps / (512 * l.radius)) : 1e-4;
+        // The moved light must be a different point to rt::Real, well above its rounding
+        // (64 ulps); for the sphere that needs double (float: 1.9e-5 > 9.8e-9).
+        const double h_min = 64 * double(std::numeric_limits<rt::Real>::epsilon()) *
+                             std::max({std::fabs(l.p[0]), std::fabs(l.p[1]), std::fabs(l.p[2])});
+        EXPECT_GE(h, h_min) << "light " << l.name << ": the yardstick is below the precision of rt::Real";
         long side_speckles = 0;
         const double best = best_match(l, r, h, &side_speckles);
         std::printf("[extremes]   light %s: %.2f%% of pixels match the light moved %.2g off the surface\n",
