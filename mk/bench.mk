@@ -16,3 +16,15 @@ bench: raytracer $(BENCH_GEN)
 
 bench-quick: raytracer $(BENCH_GEN)
 	python3 tests/bench/bench.py --raytracer ./raytracer --gen-mesh $(BENCH_GEN) --quick $(BENCH_ARGS)
+
+# BVH build only: median build time and the tree's SAH cost (tests/bench/bvh_bench.cpp).
+#   make bench-bvh BVH_SCENE=build/bench/scenes/knot_4m_plain.json
+BVH_BENCH := build/bench/bvh_bench
+BVH_SCENE ?= build/bench/scenes/knot_4m_plain.json
+$(BVH_BENCH): tests/bench/bvh_bench.cpp $(BUILD)/librt.a build/precision
+	@mkdir -p $(dir $@)
+	$(CXX) $(CPPFLAGS) $(CXXFLAGS) -o $@ $< $(BUILD)/librt.a $(LDLIBS)
+
+.PHONY: bench-bvh
+bench-bvh: $(BVH_BENCH)
+	$(BVH_BENCH) --runs 5 $(BVH_SCENE)

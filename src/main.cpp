@@ -41,7 +41,8 @@ void print_help() {
         "      --epsilon-scale F  multiply every scene's ShadowRayEpsilon by F (> 0)\n"
         "      --bvh-leaf N       largest BVH leaf (1..1024, default 8)\n"
         "      --bvh-bins N       SAH bins per axis (2..16, default 16)\n"
-        "      --bvh-split MODE   sah (default) or median (object-median splits, no SAH)\n\n"
+        "      --bvh-split MODE   sah (default) or median (object-median splits, no SAH)\n"
+        "      --bvh-cost F       SAH cost of a node visit relative to a primitive test (0.1..100, default 1)\n\n"
         "exit status: 0 all images written, 1 bad input or an image could not be written, 2 usage error\n",
         kUsage);
 }
@@ -131,6 +132,13 @@ Options parse_args(int argc, char** argv) {
             if (v.empty() || *end != '\0' || !(f > 0) || !(f < 1e30))
                 usage_error("--epsilon-scale needs a positive number, got '" + v + "'");
             o.epsilon_scale = f;
+        } else if (a == "--bvh-cost") {
+            const std::string v = value("--bvh-cost");
+            char* end = nullptr;
+            const double f = std::strtod(v.c_str(), &end);
+            if (v.empty() || *end != '\0' || !(f >= 0.1) || !(f <= 100))
+                usage_error("--bvh-cost needs a number from 0.1 to 100, got '" + v + "'");
+            o.bvh.traversal_cost = static_cast<float>(f);
         } else if (a == "--bvh-leaf") {
             o.bvh.max_leaf = static_cast<uint32_t>(whole_number(a, value("--bvh-leaf"), 1, 1024));
         } else if (a == "--bvh-bins") {

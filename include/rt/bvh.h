@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "rt/math.h"
+#include "rt/uninit_vector.h"
 
 namespace rt {
 
@@ -84,7 +85,7 @@ struct Bvh {
     int depth = 0;                // of the 4-wide tree, root = 1
 
     // Builds over `boxes[i]` (one box per primitive id i); frees `boxes`.
-    void build(std::vector<BuildBox>&& boxes, const BvhBuildOptions& options = {});
+    void build(UninitVector<BuildBox>&& boxes, const BvhBuildOptions& options = {});
 };
 
 }  // namespace rt

@@ -55,7 +55,7 @@ struct Scene {
 
     std::vector<Vec3> positions;
     std::vector<Vec3> vertex_normals;  // area-weighted, per mesh; unit length or zero
-    std::vector<Triangle> triangles;
+    UninitVector<Triangle> triangles;
     std::vector<Sphere> spheres;
     std::vector<Plane> planes;
 
@@ -73,11 +73,17 @@ struct Scene {
     }
 };
 
-// Builds render data: copies vertices per mesh, computes face normals and
+// Float bounds, rounded outwards, of every triangle then every sphere (the BVH's
+// primitive ids).
+UninitVector<BuildBox> primitive_boxes(const Scene& s);
+
+// Builds render data: gathers the meshes' vertices into one array, computes
 // area-weighted vertex normals of smooth meshes, skips degenerate triangles
 // (spec 2.10) and builds the BVH (`bvh`: build quality knobs, for measurements).
-Scene build_scene(const SceneDesc& desc, const BvhBuildOptions& bvh = {});
-// The same, releasing each mesh of `desc` as soon as it is copied (lower peak memory).
+// Takes the vertices of the first mesh and releases each mesh of `desc` as soon
+// as it is copied (lower peak memory).
 Scene build_scene(SceneDesc&& desc, const BvhBuildOptions& bvh = {});
+// The same on a copy of `desc`.
+Scene build_scene(const SceneDesc& desc, const BvhBuildOptions& bvh = {});
 
 }  // namespace rt

@@ -71,6 +71,7 @@ std::string stats_json(const std::vector<ImageRecord>& images, const std::string
                     {"depth", r.bvh_depth},
                     {"max_leaf", r.bvh.max_leaf},
                     {"bins", r.bvh.bins},
+                    {"traversal_cost", r.bvh.traversal_cost},
                     {"split", r.bvh.sah ? "sah" : "median"}};
         j["peak_rss_bytes"] = r.peak_rss;
         list.push_back(std::move(j));

@@ -1,5 +1,6 @@
 // SceneDesc -> Scene: flat arrays, normals, BVH.
 #include <chrono>
+#include <thread>
 #include <utility>
 
 #include "rt/scene.h"
@@ -23,45 +24,6 @@ Material make_material(const MaterialDesc& d) {
     return m;
 }
 
-// Appends one mesh: its vertices, its non-degenerate triangles, and, when
-// smooth, vertex normals averaged over this mesh only, weighted by area
-// (spec section 3, "Mesh"; pooling across meshes does not match the references).
-void add_mesh(Scene& s, const MeshDesc& m) {
-    const uint32_t base = static_cast<uint32_t>(s.positions.size());
-    s.positions.insert(s.positions.end(), m.positions.begin(), m.positions.end());
-    const bool smooth = m.shading == ShadingMode::Smooth;
-    s.vertex_normals.resize(s.positions.size(), Vec3{});
-    for (size_t f = 0; f + 2 < m.indices.size(); f += 3) {
-        const uint32_t a = base + m.indices[f], b = base + m.indices[f + 1], c = base + m.indices[f + 2];
-        const Vec3 n = cross(s.positions[b] - s.positions[a], s.positions[c] - s.positions[a]);
-        const Real len = length(n);
-        // Degenerate (spec 2.10): two vertices coincide or all three are collinear.
-        if (!(len > 0) || !std::isfinite(len)) {
-            ++s.degenerate_triangles;
-            continue;
-        }
-        if (smooth) {
-            // |n| is twice the area, so adding n weights each face by its area.
-            s.vertex_normals[a] += n;
-            s.vertex_normals[b] += n;
-            s.vertex_normals[c] += n;
-        }
-        Triangle t;
-        t.v[0] = a;
-        t.v[1] = b;
-        t.v[2] = c;
-        t.material = m.material;
-        t.smooth = smooth ? 1 : 0;
-        s.triangles.push_back(t);
-    }
-    if (smooth) {
-        for (size_t i = base; i < s.positions.size(); ++i) {
-            const Real len = length(s.vertex_normals[i]);
-            if (len > 0) s.vertex_normals[i] = s.vertex_normals[i] / len;
-        }
-    }
-}
-
 BuildBox make_box(Vec3 lo, Vec3 hi) {
     BuildBox b{};
     for (int a = 0; a < 3; ++a) {
@@ -71,9 +33,130 @@ BuildBox make_box(Vec3 lo, Vec3 hi) {
     return b;
 }
 
-// Builds everything; `release(i)` is called once mesh i has been copied.
-template <class Release>
-Scene build(const SceneDesc& d, const BvhBuildOptions& bvh, Release release) {
+BuildBox sphere_box(const Sphere& sp) {
+    const Vec3 r{sp.radius, sp.radius, sp.radius};
+    return make_box(sp.center - r, sp.center + r);
+}
+
+// Twice the area vector of triangle (a, b, c) and whether it is degenerate
+// (spec 2.10: two vertices coincide or all three are collinear).
+inline bool degenerate(const std::vector<Vec3>& p, uint32_t a, uint32_t b, uint32_t c, Vec3& n) {
+    n = cross(p[b] - p[a], p[c] - p[a]);
+    const Real len = length(n);
+    return !(len > 0) || !std::isfinite(len);
+}
+
+// Meshes with at least this many faces are converted by two threads.
+constexpr size_t kParallelFaces = size_t(1) << 16;
+
+// Appends one mesh: its vertices (taken from `m` when it is the first), its
+// non-degenerate triangles with their BVH boxes (appended to `boxes`, which
+// has one element per triangle of s), and, when smooth, vertex normals
+// averaged over this mesh only, weighted by area (spec section 3, "Mesh";
+// pooling across meshes does not match the references). Flat scenes get no
+// vertex normals at all.
+void add_mesh(Scene& s, MeshDesc& m, UninitVector<BuildBox>& boxes) {
+    const uint32_t base = static_cast<uint32_t>(s.positions.size());
+    if (base == 0 && s.positions.capacity() <= m.positions.size())
+        s.positions = std::move(m.positions);
+    else
+        s.positions.insert(s.positions.end(), m.positions.begin(), m.positions.end());
+    const bool smooth = m.shading == ShadingMode::Smooth;
+    const std::vector<uint32_t>& idx = m.indices;
+    const std::vector<Vec3>& pos = s.positions;
+    const size_t faces = idx.size() / 3, first = s.triangles.size();
+
+    // Each face's normal is added to its vertices in face order, so the sums
+    // (and the images) do not depend on the threads.
+    auto accumulate_normals = [&s, &idx, &pos, base] {
+        s.vertex_normals.resize(pos.size(), Vec3{});
+        for (size_t f = 0; f + 2 < idx.size(); f += 3) {
+            const uint32_t a = base + idx[f], b = base + idx[f + 1], c = base + idx[f + 2];
+            Vec3 n;
+            if (degenerate(pos, a, b, c, n)) continue;
+            // |n| is twice the area, so adding n weights each face by its area.
+            s.vertex_normals[a] += n;
+            s.vertex_normals[b] += n;
+            s.vertex_normals[c] += n;
+        }
+        for (size_t i = base; i < pos.size(); ++i) {
+            const Real len = length(s.vertex_normals[i]);
+            if (len > 0) s.vertex_normals[i] = s.vertex_normals[i] / len;
+        }
+    };
+    // Triangles and boxes of faces [f0, f1) go to slots first + f (pages
+    // first touched by the thread that writes them); degenerate faces are
+    // marked with material 0x7fffffff and squeezed out below.
+    constexpr uint32_t kDropped = 0x7fffffff;
+    s.triangles.resize(first + faces);
+    boxes.resize(first + faces);
+    auto convert = [&](size_t f0, size_t f1) {
+        for (size_t f = f0; f < f1; ++f) {
+            const uint32_t a = base + idx[3 * f], b = base + idx[3 * f + 1], c = base + idx[3 * f + 2];
+            Triangle& t = s.triangles[first + f];
+            t.v[0] = a;
+            t.v[1] = b;
+            t.v[2] = c;
+            t.smooth = smooth ? 1 : 0;
+            Vec3 n;
+            if (degenerate(pos, a, b, c, n)) {
+                t.material = kDropped;
+                continue;
+            }
+            t.material = m.material;
+            const Vec3 pa = pos[a], pb = pos[b], pc = pos[c];
+            boxes[first + f] = make_box(vmin(pa, vmin(pb, pc)), vmax(pa, vmax(pb, pc)));
+        }
+    };
+    if (faces >= kParallelFaces && std::thread::hardware_concurrency() > 1) {
+        // One thread: the normals (about an eighth of the work), then the first
+        // part of the faces; this thread: the rest.
+        const size_t split = faces * 2 / 5;
+        std::thread helper([&] {
+            if (smooth) accumulate_normals();
+            convert(0, split);
+        });
+        convert(split, faces);
+        helper.join();
+    } else {
+        if (smooth) accumulate_normals();
+        convert(0, faces);
+    }
+    // Degenerate faces out, the order of the others kept (their ids are the
+    // tie-break between equally near hits).
+    size_t out = first;
+    for (size_t i = first; i < first + faces; ++i) {
+        if (s.triangles[i].material == kDropped) {
+            ++s.degenerate_triangles;
+            continue;
+        }
+        if (out != i) {
+            s.triangles[out] = s.triangles[i];
+            boxes[out] = boxes[i];
+        }
+        ++out;
+    }
+    s.triangles.resize(out);
+    boxes.resize(out);
+}
+
+}  // namespace
+
+UninitVector<BuildBox> primitive_boxes(const Scene& s) {
+    UninitVector<BuildBox> boxes(s.triangles.size() + s.spheres.size());
+    for (size_t i = 0; i < s.triangles.size(); ++i) {
+        const Triangle& t = s.triangles[i];
+        const Vec3 a = s.positions[t.v[0]], b = s.positions[t.v[1]], c = s.positions[t.v[2]];
+        boxes[i] = make_box(vmin(a, vmin(b, c)), vmax(a, vmax(b, c)));
+    }
+    for (size_t i = 0; i < s.spheres.size(); ++i) boxes[s.triangles.size() + i] = sphere_box(s.spheres[i]);
+    return boxes;
+}
+
+namespace {
+
+// Builds everything, moving or releasing each mesh of `d` once it is copied.
+Scene build(SceneDesc& d, const BvhBuildOptions& bvh) {
     Scene s;
     s.path = d.path;
     s.background = d.background;
@@ -89,29 +172,21 @@ Scene build(const SceneDesc& d, const BvhBuildOptions& bvh, Release release) {
         ntri += m.indices.size() / 3;
         nvert += m.positions.size();
     }
-    s.positions.reserve(nvert);
-    s.vertex_normals.reserve(nvert);
+    if (d.meshes.size() > 1) s.positions.reserve(nvert);
     s.triangles.reserve(ntri);
+    // Primitive boxes for the BVH: triangles first, in order, then spheres.
+    UninitVector<BuildBox> boxes;
+    boxes.reserve(ntri + d.spheres.size());
     for (size_t i = 0; i < d.meshes.size(); ++i) {
-        add_mesh(s, d.meshes[i]);
-        release(i);
+        add_mesh(s, d.meshes[i], boxes);
+        std::vector<Vec3>().swap(d.meshes[i].positions);
+        std::vector<uint32_t>().swap(d.meshes[i].indices);
     }
-    s.triangles.shrink_to_fit();
     for (const SphereDesc& sp : d.spheres) s.spheres.push_back({sp.center, sp.radius, sp.material});
     for (const PlaneDesc& p : d.planes) s.planes.push_back({p.point, normalize(p.normal), p.material});
 
+    for (const Sphere& sp : s.spheres) boxes.push_back(sphere_box(sp));
     const auto t0 = std::chrono::steady_clock::now();
-    std::vector<BuildBox> boxes(s.triangles.size() + s.spheres.size());
-    for (size_t i = 0; i < s.triangles.size(); ++i) {
-        const Triangle& t = s.triangles[i];
-        const Vec3 a = s.positions[t.v[0]], b = s.positions[t.v[1]], c = s.positions[t.v[2]];
-        boxes[i] = make_box(vmin(a, vmin(b, c)), vmax(a, vmax(b, c)));
-    }
-    for (size_t i = 0; i < s.spheres.size(); ++i) {
-        const Sphere& sp = s.spheres[i];
-        const Vec3 r{sp.radius, sp.radius, sp.radius};
-        boxes[s.triangles.size() + i] = make_box(sp.center - r, sp.center + r);
-    }
     s.bvh.build(std::move(boxes), bvh);
     s.build_seconds = std::chrono::duration<Real>(std::chrono::steady_clock::now() - t0).count();
     return s;
@@ -120,14 +195,12 @@ Scene build(const SceneDesc& d, const BvhBuildOptions& bvh, Release release) {
 }  // namespace
 
 Scene build_scene(const SceneDesc& d, const BvhBuildOptions& bvh) {
-    return build(d, bvh, [](size_t) {});
+    SceneDesc copy = d;
+    return build(copy, bvh);
 }
 
 Scene build_scene(SceneDesc&& d, const BvhBuildOptions& bvh) {
-    return build(d, bvh, [&d](size_t i) {
-        std::vector<Vec3>().swap(d.meshes[i].positions);
-        std::vector<uint32_t>().swap(d.meshes[i].indices);
-    });
+    return build(d, bvh);
 }
 
 }  // namespace rt
