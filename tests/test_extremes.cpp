@@ -614,27 +614,18 @@ TEST(ExtremesEdges, ConcaveEdgeHasNoShadowSpeckles) {
                 "row 23: %d at the centre column)\n",
                 dark, r.img.width, lit(20, 21), lit(20, 22), lit(20, 23));
     EXPECT_EQ(r.nonfinite, 0);
-    if (dark > 0 && !run_pending()) {
-        // Known, kept on purpose: the shadow ray starts at p + n * ShadowRayEpsilon
-        // with n the normal of the face that was hit; at a point on a concave edge that
-        // start lies in the plane of the other face, which the triangle test puts at
-        // t = +-1e-16 at random (here t <= 1.06 ulps of max|origin|): 7 of the 40
-        // pixels of the edge row come out dark. Two fixes measured (2026-11-22), both
-        // making official images worse, so neither is in:
-        //  - ignoring occluders within eps of the origin: tower_smooth goes from 16 to
-        //    461 pixels off its reference, raven from 3 to 91;
-        //  - ignoring only those within its rounding error (t <= 16 ulps of
-        //    max|origin|; branch issue4-concave-edge-tmin): this test passes and 18
-        //    official images keep every byte, but cornellbox and cornellbox_recursive
-        //    change 182 pixels each, all on the image diagonals (their concave room
-        //    edges, where the reference is noisy itself), all now lit: 45 come to match
-        //    the reference, 50 stop matching, 87 are off either way (698 -> 703 and
-        //    704 -> 709 pixels off).
-        // RT_RUN_PENDING=1 makes this a failure.
-        GTEST_SKIP() << "kept as the references do it: " << dark
-                     << " dark pixels on a concave edge (shadow ray starts on the adjacent face); "
-                        "the fixes measured move official images away from their references";
-    }
+    // The shadow ray starts at p + n * ShadowRayEpsilon with n the normal of the face
+    // that was hit; at a point on a concave edge that start lies in the plane of the
+    // other face, which the triangle test used to put at t = +-1e-16 at random (7 of
+    // the 40 pixels of the edge row came out dark). intersect_triangle now rejects a t
+    // within the rounding error of t and of the origin (include/rt/intersect.h).
+    // Measured 2026-11-22: 22 of 24 images keep every byte; cornellbox and
+    // cornellbox_recursive change 182 pixels each, all on their concave room edges
+    // (the image diagonals), all now lit, where the reference itself is noisy: 45 come
+    // to match it, 50 stop, 87 are off either way (698 -> 703 and 704 -> 709 pixels
+    // off, 0.110% and 0.111%, within the 0.2% tolerance). Ignoring occluders within
+    // ShadowRayEpsilon instead moves tower_smooth from 16 to 461 pixels off, raven
+    // from 3 to 91.
     EXPECT_EQ(dark, 0);
 }
 

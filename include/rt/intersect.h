@@ -3,6 +3,7 @@
 #pragma once
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "rt/math.h"
 
@@ -33,6 +34,13 @@ inline RayPre prepare(const Ray& r) {
     return p;
 }
 
+// gamma(n) = n u / (1 - n u), u the unit roundoff of Real: bounds the relative
+// error of n chained floating-point operations (Higham; pbrt-v3 3.9.1).
+constexpr Real gamma_bound(int n) {
+    constexpr Real u = std::numeric_limits<Real>::epsilon() / 2;
+    return n * u / (1 - n * u);
+}
+
 // Watertight ray/triangle test. On a hit in (tmin, tmax) returns true with the
 // distance t and the barycentric weights (w0, w1, w2) of a, b, c.
 // With kCull, triangles whose counter-clockwise front faces away from the ray
@@ -60,6 +68,25 @@ inline bool intersect_triangle(const RayPre& p, Vec3 a, Vec3 b, Vec3 c, Real tmi
     // tmax = nextafter(t) gets the same hit (the closest-hit tie-break relies on it).
     const Real tt = tz * inv;
     if (!(tt > tmin && tt < tmax)) return false;
+    // A t within rounding error of 0 is a ray starting on the triangle's plane
+    // (a shadow ray offset from a concave edge onto the adjacent face): not a hit,
+    // whatever sign the rounding gave it. The error counted is that of t itself
+    // (the bound of pbrt-v3, section 3.9.6) plus that of the origin, a computed
+    // hit point moved by ShadowRayEpsilon (a few ulps of its largest coordinate,
+    // bounded by gamma(8); the direction has unit length).
+    {
+        const Real max_zt = std::fabs(p.sz) * std::fmax(std::fabs(A[p.kz]), std::fmax(std::fabs(B[p.kz]), std::fabs(C[p.kz])));
+        const Real max_xt = std::fmax(std::fabs(ax), std::fmax(std::fabs(bx), std::fabs(cx)));
+        const Real max_yt = std::fmax(std::fabs(ay), std::fmax(std::fabs(by), std::fabs(cy)));
+        const Real max_e = std::fmax(std::fabs(u), std::fmax(std::fabs(v), std::fabs(ww)));
+        const Real dz = gamma_bound(3) * max_zt;
+        const Real dx = gamma_bound(5) * (max_xt + max_zt), dy = gamma_bound(5) * (max_yt + max_zt);
+        const Real de = 2 * (gamma_bound(2) * max_xt * max_yt + dy * max_xt + dx * max_yt);
+        const Real max_o = std::fmax(std::fabs(p.ray.org.x), std::fmax(std::fabs(p.ray.org.y), std::fabs(p.ray.org.z)));
+        const Real dt = 3 * (gamma_bound(3) * max_e * max_zt + de * max_zt + dz * max_e) * std::fabs(inv) +
+                        gamma_bound(8) * max_o;
+        if (tt <= dt) return false;
+    }
     t = tt;
     w[0] = u * inv;
     w[1] = v * inv;
