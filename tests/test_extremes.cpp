@@ -617,8 +617,8 @@ TEST(ExtremesEdges, ConcaveEdgeHasNoShadowSpeckles) {
     // The shadow ray starts at p + n * ShadowRayEpsilon with n the normal of the face
     // that was hit; at a point on a concave edge that start lies in the plane of the
     // other face, which the triangle test used to put at t = +-1e-16 at random (7 of
-    // the 40 pixels of the edge row came out dark). intersect_triangle now rejects a t
-    // within the rounding error of t and of the origin (include/rt/intersect.h).
+    // the 40 pixels of the edge row came out dark). For shadow rays intersect_triangle
+    // now rejects a t within the rounding error of t and of the origin (intersect.h).
     // Measured 2026-11-22: 22 of 24 images keep every byte; cornellbox and
     // cornellbox_recursive change 182 pixels each, all on their concave room edges
     // (the image diagonals), all now lit, where the reference itself is noisy: 45 come

@@ -81,12 +81,12 @@ inline int test4(const Bvh4Node& n, const BoxRay& r, double tmin, double tmax, d
 }
 
 // Tests one BVH primitive; returns true with t (and weights) on a hit in (tmin, tmax).
-template <bool kCull>
+template <bool kCull, bool kShadow = false>
 inline bool hit_prim(const Scene& s, const RayPre& p, uint32_t id, Real tmin, Real tmax, Real& t, Real w[3]) {
     const size_t ntri = s.triangles.size();
     if (id < ntri) {
         const Triangle& tri = s.triangles[id];
-        return intersect_triangle<kCull>(p, s.positions[tri.v[0]], s.positions[tri.v[1]], s.positions[tri.v[2]],
+        return intersect_triangle<kCull, kShadow>(p, s.positions[tri.v[0]], s.positions[tri.v[1]], s.positions[tri.v[2]],
                                          tmin, tmax, t, w);
     }
     const Sphere& sp = s.spheres[id - ntri];
@@ -199,7 +199,7 @@ bool any_hit(const Scene& s, const Ray& ray, Real tmin, Real tmax, uint32_t* occ
     Real w[3];
     if (occluder && *occluder != kNoOccluder) {
         Real t;
-        if (hit_prim<false>(s, p, *occluder, tmin, tmax, t, w)) return true;
+        if (hit_prim<false, true>(s, p, *occluder, tmin, tmax, t, w)) return true;
     }
     const BoxRay br = box_ray(p);
     int32_t stack[kStackSize];
@@ -213,7 +213,7 @@ bool any_hit(const Scene& s, const Ray& ray, Real tmin, Real tmax, uint32_t* occ
         if (child < 0) {
             for (uint32_t i = ~static_cast<uint32_t>(child), end = i + counts[sp]; i < end; ++i) {
                 Real t;
-                if (hit_prim<false>(s, p, s.bvh.prims[i], tmin, tmax, t, w)) {
+                if (hit_prim<false, true>(s, p, s.bvh.prims[i], tmin, tmax, t, w)) {
                     if (occluder) *occluder = s.bvh.prims[i];
                     return true;
                 }
