@@ -62,11 +62,15 @@ public:
     const Bvh4Node* end() const { return data_.get() + size_; }
     void clear() { data_.reset(); size_ = 0; }
     // Storage for `capacity` nodes, uninitialised; then set_size(n) with n <= capacity.
-    void allocate(size_t capacity) { data_.reset(new Bvh4Node[capacity]); size_ = 0; }
+    // Large arrays ask for transparent huge pages (allocate_large).
+    void allocate(size_t capacity);
     void set_size(size_t n) { size_ = n; }
 
 private:
-    std::unique_ptr<Bvh4Node[]> data_;
+    struct Free {
+        void operator()(Bvh4Node* p) const;
+    };
+    std::unique_ptr<Bvh4Node[], Free> data_;
     size_t size_ = 0;
 };
 

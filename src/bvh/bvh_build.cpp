@@ -10,6 +10,9 @@
 #include <atomic>
 #include <cmath>
 #include <thread>
+#include <cstdlib>
+#include <new>
+#include <sys/mman.h>
 
 #if defined(__AVX__)
 #include <immintrin.h>
@@ -18,6 +21,31 @@
 #include "rt/bvh.h"
 
 namespace rt {
+
+// The node array of a large scene spans hundreds of megabytes that rays visit
+// at random: with 4 KiB pages nearly every node load below the top levels is
+// also a TLB miss. 2 MiB pages (transparent huge pages, where the kernel grants
+// them on request) cover it with few TLB entries: knot_16m_glass renders 9%
+// faster, its build is no slower. (Asking the same for the triangles, boxes and
+// primitive order too made loading slower, 1-2 s more system time, and rays no
+// faster.)
+void NodeArray::allocate(size_t capacity) {
+    data_.reset();
+    size_ = 0;
+    const size_t bytes = capacity * sizeof(Bvh4Node);
+    constexpr size_t kHuge = size_t(2) << 20;
+    void* p = nullptr;
+    if (bytes >= 4 * kHuge) {
+        const size_t rounded = (bytes + kHuge - 1) / kHuge * kHuge;
+        if (posix_memalign(&p, kHuge, rounded) != 0) throw std::bad_alloc();
+        madvise(p, rounded, MADV_HUGEPAGE);  // a request: refused on some kernels, harmless
+    } else if (posix_memalign(&p, alignof(Bvh4Node), bytes) != 0) {
+        throw std::bad_alloc();
+    }
+    data_.reset(static_cast<Bvh4Node*>(p));
+}
+
+void NodeArray::Free::operator()(Bvh4Node* p) const { std::free(p); }
 
 float round_down_to_float(Real x) {
     const float f = static_cast<float>(x);
