@@ -132,37 +132,45 @@ bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
         const BoxRay br = box_ray(p);
         StackEntry stack[kStackSize];
         int sp = 0;
-        stack[sp++] = {0, 0, double(tmin)};
-        while (sp > 0) {
-            const StackEntry e = stack[--sp];
-            if (e.t > box_limit()) continue;
+        // The nearest hit child is visited next without a trip through the stack;
+        // the others are pushed far to near.
+        StackEntry e{0, 0, double(tmin)};
+        for (;;) {
             if (e.child < 0) {
                 for (uint32_t i = ~static_cast<uint32_t>(e.child), end = i + e.count; i < end; ++i) {
                     const uint32_t id = s.bvh.prims[i];
                     Real t;
                     if (hit_prim<kCull>(s, p, id, tmin, limit(), t, w)) consider(id, t);
                 }
-                continue;
-            }
-            const Bvh4Node& n = s.bvh.nodes[e.child];
-            double t[4];
-            int mask = test4(n, br, double(tmin), box_limit(), t);
-            // Push hit children far to near, so the nearest is popped first.
-            int order[4], k = 0;
-            while (mask) {
-                const int i = __builtin_ctz(mask);
-                mask &= mask - 1;
-                int j = k++;
-                while (j > 0 && t[order[j - 1]] < t[i]) {
-                    order[j] = order[j - 1];
-                    --j;
+            } else {
+                const Bvh4Node& n = s.bvh.nodes[e.child];
+                double t[4];
+                int mask = test4(n, br, double(tmin), box_limit(), t);
+                int order[4], k = 0;  // hit children, farthest first
+                while (mask) {
+                    const int i = __builtin_ctz(mask);
+                    mask &= mask - 1;
+                    int j = k++;
+                    while (j > 0 && t[order[j - 1]] < t[i]) {
+                        order[j] = order[j - 1];
+                        --j;
+                    }
+                    order[j] = i;
                 }
-                order[j] = i;
+                if (k > 0) {
+                    for (int j = 0; j + 1 < k; ++j) {
+                        const int i = order[j];
+                        stack[sp++] = {n.child[i], n.count[i], t[i]};
+                    }
+                    const int i = order[k - 1];
+                    e = {n.child[i], n.count[i], t[i]};
+                    continue;
+                }
             }
-            for (int j = 0; j < k; ++j) {
-                const int i = order[j];
-                stack[sp++] = {n.child[i], n.count[i], t[i]};
-            }
+            // Next from the stack, skipping entries beyond the best hit so far.
+            while (sp > 0 && stack[sp - 1].t > box_limit()) --sp;
+            if (sp == 0) break;
+            e = stack[--sp];
         }
     }
     const uint32_t base = static_cast<uint32_t>(s.triangles.size() + s.spheres.size());
@@ -209,32 +217,42 @@ bool any_hit(const Scene& s, const Ray& ray, Real tmin, Real tmax, uint32_t* occ
     int32_t stack[kStackSize];
     uint16_t counts[kStackSize];
     int sp = 0;
-    stack[sp] = 0;
-    counts[sp++] = 0;
-    while (sp > 0) {
-        --sp;
-        const int32_t child = stack[sp];
+    // One hit child is visited next without a trip through the stack.
+    int32_t child = 0;
+    uint16_t count = 0;
+    for (;;) {
         if (child < 0) {
-            for (uint32_t i = ~static_cast<uint32_t>(child), end = i + counts[sp]; i < end; ++i) {
+            for (uint32_t i = ~static_cast<uint32_t>(child), end = i + count; i < end; ++i) {
                 Real t;
                 if (hit_prim<false, true>(s, p, s.bvh.prims[i], tmin, tmax, t, w)) {
                     if (occluder) *occluder = s.bvh.prims[i];
                     return true;
                 }
             }
-            continue;
+        } else {
+            const Bvh4Node& n = s.bvh.nodes[child];
+            double t[4];
+            int mask = test4(n, br, double(tmin), double(tmax), t);
+            if (mask) {
+                for (;;) {
+                    const int i = __builtin_ctz(mask);
+                    mask &= mask - 1;
+                    if (!mask) {
+                        child = n.child[i];
+                        count = n.count[i];
+                        break;
+                    }
+                    stack[sp] = n.child[i];
+                    counts[sp++] = n.count[i];
+                }
+                continue;
+            }
         }
-        const Bvh4Node& n = s.bvh.nodes[child];
-        double t[4];
-        int mask = test4(n, br, double(tmin), double(tmax), t);
-        while (mask) {
-            const int i = __builtin_ctz(mask);
-            mask &= mask - 1;
-            stack[sp] = n.child[i];
-            counts[sp++] = n.count[i];
-        }
+        if (sp == 0) return false;
+        --sp;
+        child = stack[sp];
+        count = counts[sp];
     }
-    return false;
 }
 
 }  // namespace rt
