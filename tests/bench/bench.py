@@ -11,11 +11,11 @@ generated into build/bench/scenes/ by build/bench/gen_mesh when missing or older
 Method, per scene: one warm-up run of each program, then N timed runs of each (default 5,
 --quick 3), alternating (ours, ref, ref, ours, ours, ref, ...), each a whole process with the
 same thread count, writing its images into a fresh temporary folder; the median wall time is
-quoted. Ours runs with -q. Peak RSS comes from os.wait4 (see SPAWNER below).
+quoted. Ours runs with -q on cheap scenes. Peak RSS comes from os.wait4 (see SPAWNER below).
 Our phase split (load, BVH build, render, PNG write) is read from our stderr line: for cheap
 scenes (warm-up under --cheap seconds) the median of N separate non-quiet runs; otherwise
-the first timed run of ours is made without -q and is the split (-q only drops one stderr
-line per image, so it costs nothing measurable).
+every timed run of ours is made without -q and the split is their median, like refrender's
+(-q only drops one stderr line per image, so it costs nothing measurable).
 Budget rules: a heavy scene (a warm-up, or first timed round, over --heavy seconds) gets at
 most --heavy-runs timed runs; a scene whose mesh files an earlier non-cheap scene already
 loaded (the _glass and _gold variants) skips the warm-up: the page cache is warm.
@@ -444,7 +444,7 @@ def bench_scene(scene, a, ours_bin, ref_bin, warmed, ours_shown):
         order = ["ours", "ref"] if k % 2 == 0 else ["ref", "ours"]
         for who in order:
             if who == "ours" and ours_ok:
-                loud_run = k == 0 and not cheap  # the phase split of non-cheap scenes
+                loud_run = not cheap  # the phase split of non-cheap scenes
                 r = run_once(ours_loud_cmd if loud_run else ours_cmd, a.timeout, REPO)
                 res["ours_runs"].append(dict(record(r), quiet=not loud_run))
                 if not ok(r):
