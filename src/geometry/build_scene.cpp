@@ -69,7 +69,6 @@ void add_mesh(Scene& s, MeshDesc& m, UninitVector<BuildBox>& boxes) {
     // Each face's normal is added to its vertices in face order, so the sums
     // (and the images) do not depend on the threads.
     auto accumulate_normals = [&s, &idx, &pos, base] {
-        s.vertex_normals.resize(pos.size(), Vec3{});
         for (size_t f = 0; f + 2 < idx.size(); f += 3) {
             const uint32_t a = base + idx[f], b = base + idx[f + 1], c = base + idx[f + 2];
             Vec3 n;
@@ -90,6 +89,9 @@ void add_mesh(Scene& s, MeshDesc& m, UninitVector<BuildBox>& boxes) {
     constexpr uint32_t kDropped = 0x7fffffff;
     s.triangles.resize(first + faces);
     boxes.resize(first + faces);
+    // Every allocation happens here, not on the helper thread, where running out
+    // of memory would end the process instead of reaching main's error message.
+    if (smooth) s.vertex_normals.resize(pos.size(), Vec3{});
     auto convert = [&](size_t f0, size_t f1) {
         for (size_t f = f0; f < f1; ++f) {
             const uint32_t a = base + idx[3 * f], b = base + idx[3 * f + 1], c = base + idx[3 * f + 2];
