@@ -19,6 +19,7 @@
 #endif
 
 #include "rt/bvh.h"
+#include "rt/threads.h"
 
 namespace rt {
 
@@ -256,9 +257,9 @@ struct Builder {
             const uint32_t half = r.begin + r.count() / 2;
             Box8 other[3][kBins];
             uint32_t other_counts[3][kBins];
-            std::thread t([&] { bin_range(r, r.begin, half, scale, nb, other, other_counts); });
+            std::thread t = start_or_run([&] { bin_range(r, r.begin, half, scale, nb, other, other_counts); });
             bin_range(r, half, r.end, scale, nb, bins, counts);
-            t.join();
+            if (t.joinable()) t.join();
             spare_threads.fetch_add(1);
             for (int a = 0; a < 3; ++a)
                 for (int b = 0; b < nb; ++b) {
@@ -407,9 +408,9 @@ struct Builder {
                 // (the shorter block is swapped with the far end of the longer).
                 const uint32_t half = r.begin + r.count() / 2;
                 Parted q;
-                std::thread t([&] { q = partition(r.begin, half, goes_left); });
+                std::thread t = start_or_run([&] { q = partition(r.begin, half, goes_left); });
                 p = partition(half, r.end, goes_left);
-                t.join();
+                if (t.joinable()) t.join();
                 spare_threads.fetch_add(1);
                 const uint32_t a_right = half - q.mid, b_left = p.mid - half;
                 if (a_right <= b_left)
@@ -537,7 +538,7 @@ struct Builder {
                     mine += kids[i].count();
                 }
             }
-            helper = std::thread([&, level] {
+            helper = start_or_run([&, level] {
                 for (int i = 0; i < n; ++i)
                     if (to_helper[i]) build(child_index[i], halves[i][0], halves[i][1], level + 1);
                 spare_threads.fetch_add(1);

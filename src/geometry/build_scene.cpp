@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "rt/scene.h"
+#include "rt/threads.h"
 
 namespace rt {
 namespace {
@@ -114,12 +115,12 @@ void add_mesh(Scene& s, MeshDesc& m, UninitVector<BuildBox>& boxes) {
         // One thread: the normals (about an eighth of the work), then the first
         // part of the faces; this thread: the rest.
         const size_t split = faces * 2 / 5;
-        std::thread helper([&] {
+        std::thread helper = start_or_run([&] {
             if (smooth) accumulate_normals();
             convert(0, split);
         });
         convert(split, faces);
-        helper.join();
+        if (helper.joinable()) helper.join();
     } else {
         if (smooth) accumulate_normals();
         convert(0, faces);
