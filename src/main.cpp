@@ -2,6 +2,7 @@
 #include <sys/stat.h>
 
 #include <cerrno>
+#include <cmath>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -68,6 +69,13 @@ struct Options {
 std::vector<rt::cli::ImageRecord> g_stats;
 
 // A whole number in [lo, hi] for option `name`, or a usage error.
+// v as a number, or NaN when the whole of v is not one (callers check their range).
+double real_number(const std::string& v) {
+    char* end = nullptr;
+    const double f = std::strtod(v.c_str(), &end);
+    return v.empty() || *end != '\0' ? std::nan("") : f;
+}
+
 long whole_number(const std::string& name, const std::string& v, long lo, long hi) {
     char* end = nullptr;
     errno = 0;
@@ -127,17 +135,13 @@ Options parse_args(int argc, char** argv) {
             o.max_depth = static_cast<int>(whole_number(a, value("--max-depth"), 0, 10000));
         } else if (a == "--epsilon-scale") {
             const std::string v = value("--epsilon-scale");
-            char* end = nullptr;
-            const double f = std::strtod(v.c_str(), &end);
-            if (v.empty() || *end != '\0' || !(f > 0) || !(f < 1e30))
-                usage_error("--epsilon-scale needs a positive number, got '" + v + "'");
+            const double f = real_number(v);
+            if (!(f > 0) || !(f < 1e30)) usage_error("--epsilon-scale needs a positive number, got '" + v + "'");
             o.epsilon_scale = f;
         } else if (a == "--bvh-cost") {
             const std::string v = value("--bvh-cost");
-            char* end = nullptr;
-            const double f = std::strtod(v.c_str(), &end);
-            if (v.empty() || *end != '\0' || !(f >= 0.1) || !(f <= 100))
-                usage_error("--bvh-cost needs a number from 0.1 to 100, got '" + v + "'");
+            const double f = real_number(v);
+            if (!(f >= 0.1) || !(f <= 100)) usage_error("--bvh-cost needs a number from 0.1 to 100, got '" + v + "'");
             o.bvh.traversal_cost = static_cast<float>(f);
         } else if (a == "--bvh-leaf") {
             o.bvh.max_leaf = static_cast<uint32_t>(whole_number(a, value("--bvh-leaf"), 1, 1024));

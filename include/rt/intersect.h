@@ -34,10 +34,11 @@ inline RayPre prepare(const Ray& r) {
     return p;
 }
 
-// gamma(n) = n u / (1 - n u), u the unit roundoff of Real: bounds the relative
+// gamma(n) = n u / (1 - n u), u the unit roundoff of T: bounds the relative
 // error of n chained floating-point operations (Higham; pbrt-v3 3.9.1).
-constexpr Real gamma_bound(int n) {
-    constexpr Real u = std::numeric_limits<Real>::epsilon() / 2;
+template <class T = Real>
+constexpr T gamma_bound(int n) {
+    constexpr T u = std::numeric_limits<T>::epsilon() / 2;
     return n * u / (1 - n * u);
 }
 

@@ -101,9 +101,11 @@ inline Box8 load8(const BuildBox& b) {
     const __m256 sign = _mm256_setr_ps(0, 0, 0, 0, -0.0f, -0.0f, -0.0f, -0.0f);
     return _mm256_blend_ps(_mm256_xor_ps(_mm256_loadu_ps(b.lo), sign), _mm256_setzero_ps(), 0x88);
 }
-// The box of the point lo + hi (the doubled centroid, binning's measure).
+// lo + hi (the doubled centroid, binning's measure) in lanes 0..2.
+inline __m128 centre4(Box8 v) { return _mm_sub_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1)); }
+// The box of the point lo + hi.
 inline Box8 centroid8(Box8 v) {
-    const __m128 c = _mm_sub_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
+    const __m128 c = centre4(v);
     return _mm256_insertf128_ps(_mm256_castps128_ps256(c), _mm_xor_ps(c, _mm_set1_ps(-0.0f)), 1);
 }
 // FBox::area of the box, bit for bit: lo - hi = -(hi - lo) exactly, and the
@@ -189,6 +191,15 @@ struct Builder {
     std::atomic<int>& spare_threads;
     BvhBuildOptions opt;
 
+    // SAH: r stays a leaf when its best split, of cost `best` (the sum of each
+    // side's area times its primitive count), costs no less than testing its
+    // primitives, and a leaf may hold them.
+    bool stays_leaf(const Range& r, float best) const {
+        const float parent_area = r.box.area();
+        const float split_cost = parent_area > 0 ? opt.traversal_cost + best / parent_area : HUGE_VALF;
+        return split_cost >= float(r.count()) && r.count() <= opt.max_leaf;
+    }
+
     // Bins r's centroids along all axes; returns false when r should stay a leaf,
     // otherwise the best axis and bin.
     bool best_split(const Range& r, int level, int& axis_out, int& bin_out, float scale[3], int nb) const {
@@ -233,9 +244,7 @@ struct Builder {
                 }
             }
             if (best_axis >= 0) {
-                const float parent_area = r.box.area();
-                const float split_cost = parent_area > 0 ? opt.traversal_cost + best_cost / parent_area : HUGE_VALF;
-                if (split_cost >= float(count) && count <= opt.max_leaf) return false;
+                if (stays_leaf(r, best_cost)) return false;
                 axis_out = best_axis;
                 bin_out = best_bin;
                 return true;
@@ -251,16 +260,14 @@ struct Builder {
     // primitives, such as a floor under a scanned mesh, that dominate the
     // areas; SAH cost +23% on a generated knot.)
     void bin_all(const Range& r, const float scale[3], int nb, Box8 bins[3][kBins], uint32_t counts[3][kBins]) const {
-        if (r.count() >= kParallelSplit && take_thread()) {
+        if (r.count() >= kParallelSplit) {
             // Each half on its own thread, then the bins merged (min and sum do
             // not depend on the order, so neither does the tree).
             const uint32_t half = r.begin + r.count() / 2;
             Box8 other[3][kBins];
             uint32_t other_counts[3][kBins];
-            std::thread t = start_or_run([&] { bin_range(r, r.begin, half, scale, nb, other, other_counts); });
-            bin_range(r, half, r.end, scale, nb, bins, counts);
-            if (t.joinable()) t.join();
-            spare_threads.fetch_add(1);
+            in_parallel([&] { bin_range(r, r.begin, half, scale, nb, other, other_counts); },
+                        [&] { bin_range(r, half, r.end, scale, nb, bins, counts); });
             for (int a = 0; a < 3; ++a)
                 for (int b = 0; b < nb; ++b) {
                     bins[a][b] = min8(bins[a][b], other[a][b]);
@@ -274,12 +281,10 @@ struct Builder {
     // bin_all over refs[begin, end) of r.
     void bin_range(const Range& r, uint32_t begin, uint32_t end, const float scale[3], int nb, Box8 bins[3][kBins],
                    uint32_t counts[3][kBins]) const {
-        Box8 (*set)[kBins] = bins;
-        uint32_t (*cnt)[kBins] = counts;
         for (int a = 0; a < 3; ++a)
             for (int b = 0; b < nb; ++b) {
-                set[a][b] = empty8();
-                cnt[a][b] = 0;
+                bins[a][b] = empty8();
+                counts[a][b] = 0;
             }
 #if defined(__AVX__)
         // bin_of on three axes at once (the same float operations, so the same bins)
@@ -288,13 +293,12 @@ struct Builder {
         const __m128i zero = _mm_setzero_si128(), top = _mm_set1_epi32(nb - 1);
         auto one = [&](uint32_t i) {
             const Box8 v = load8(refs[i]);
-            const __m128 c = _mm_sub_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));
-            __m128i k = _mm_cvttps_epi32(_mm_mul_ps(_mm_sub_ps(c, cmin), sc));
+            __m128i k = _mm_cvttps_epi32(_mm_mul_ps(_mm_sub_ps(centre4(v), cmin), sc));
             k = _mm_min_epi32(_mm_max_epi32(k, zero), top);
             const int b[3] = {_mm_cvtsi128_si32(k), _mm_extract_epi32(k, 1), _mm_extract_epi32(k, 2)};
             for (int a = 0; a < 3; ++a) {
-                set[a][b[a]] = min8(set[a][b[a]], v);
-                ++cnt[a][b[a]];
+                bins[a][b[a]] = min8(bins[a][b[a]], v);
+                ++counts[a][b[a]];
             }
         };
 #else
@@ -302,8 +306,8 @@ struct Builder {
             const Box8 v = load8(refs[i]);
             for (int a = 0; a < 3; ++a) {
                 const int b = bin_of(refs[i], a, r.cbox.lo[a], scale[a], nb);
-                set[a][b] = min8(set[a][b], v);
-                ++cnt[a][b];
+                bins[a][b] = min8(bins[a][b], v);
+                ++counts[a][b];
             }
         };
 #endif
@@ -356,10 +360,9 @@ struct Builder {
     // against the rest, so SAH is evaluated exactly for each.
     bool split_tiny(Range& r, Range& left, Range& right) const {
         const uint32_t n = r.count();
-        const float parent_area = r.box.area();
-        if (n <= 1 || !(parent_area > 0)) {
-            r.leaf = n <= opt.max_leaf;
-            if (r.leaf) return false;
+        if (n <= 1) {
+            r.leaf = true;
+            return false;
         }
         BuildBox* p = refs + r.begin;
         float best = HUGE_VALF;
@@ -373,7 +376,7 @@ struct Builder {
                 alone = k;
             }
         }
-        if (opt.traversal_cost + best / parent_area >= float(n) && n <= opt.max_leaf) {
+        if (stays_leaf(r, best)) {
             r.leaf = true;
             return false;
         }
@@ -402,16 +405,14 @@ struct Builder {
             const float lo = r.cbox.lo[axis], sc = scale[axis];
             auto goes_left = [&](const BuildBox& b) { return bin_of(b, axis, lo, sc, nb) <= bin; };
             Parted p;
-            if (r.count() >= kParallelSplit && take_thread()) {
+            if (r.count() >= kParallelSplit) {
                 // Each half partitioned on its own thread; then the right part of
                 // the first half and the left part of the second trade places
                 // (the shorter block is swapped with the far end of the longer).
                 const uint32_t half = r.begin + r.count() / 2;
                 Parted q;
-                std::thread t = start_or_run([&] { q = partition(r.begin, half, goes_left); });
-                p = partition(half, r.end, goes_left);
-                if (t.joinable()) t.join();
-                spare_threads.fetch_add(1);
+                in_parallel([&] { q = partition(r.begin, half, goes_left); },
+                            [&] { p = partition(half, r.end, goes_left); });
                 const uint32_t a_right = half - q.mid, b_left = p.mid - half;
                 if (a_right <= b_left)
                     std::swap_ranges(refs + q.mid, refs + half, refs + p.mid - a_right);
@@ -547,6 +548,21 @@ struct Builder {
         for (int i = 0; i < n; ++i)
             if (is_split[i] && !to_helper[i]) build(child_index[i], halves[i][0], halves[i][1], level + 1);
         if (helper.joinable()) helper.join();
+    }
+
+    // Runs a on a spare thread, when there is one, beside b on this thread;
+    // both are done on return.
+    template <class A, class B>
+    void in_parallel(const A& a, const B& b) const {
+        if (!take_thread()) {
+            a();
+            b();
+            return;
+        }
+        std::thread t = start_or_run(a);
+        b();
+        if (t.joinable()) t.join();
+        spare_threads.fetch_add(1);
     }
 
     bool take_thread() const {

@@ -21,8 +21,7 @@ constexpr Real kTieSlack = 1 + 64 * std::numeric_limits<Real>::epsilon();
 // rounding in (bound - org) * inv_dir (pbrt-v3 section 3.9.2: 1 + 2 gamma(3)).
 // Flat boxes (axis-aligned walls) make the slabs meet at one t, so without the
 // widening a ray along a wall's edge could miss both walls.
-constexpr double kSlabWiden = 1 + 2 * (3 * std::numeric_limits<double>::epsilon() / 2) /
-                                      (1 - 3 * std::numeric_limits<double>::epsilon() / 2);
+constexpr double kSlabWiden = 1 + 2 * gamma_bound<double>(3);
 
 // Per-ray data of the box test. For each axis the near plane is lo when the
 // direction is positive, so the entry is (near - org) * inv and the exit
@@ -122,7 +121,6 @@ bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
             found = true;
         }
     };
-    auto limit = [&]() { return prim_limit; };
     // Boxes get more slack: the entry distance of a flat box around a primitive hit at
     // exactly best_t can round a few ulps above it (kTieSlack covers the error of both
     // the slab distances and the triangle's t).
@@ -140,7 +138,7 @@ bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
                 for (uint32_t i = ~static_cast<uint32_t>(e.child), end = i + e.count; i < end; ++i) {
                     const uint32_t id = s.bvh.prims[i];
                     Real t;
-                    if (hit_prim<kCull>(s, p, id, tmin, limit(), t, w)) consider(id, t);
+                    if (hit_prim<kCull>(s, p, id, tmin, prim_limit, t, w)) consider(id, t);
                 }
             } else {
                 const Bvh4Node& n = s.bvh.nodes[e.child];
@@ -176,7 +174,7 @@ bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
     const uint32_t base = static_cast<uint32_t>(s.triangles.size() + s.spheres.size());
     for (size_t i = 0; i < s.planes.size(); ++i) {
         Real t;
-        if (intersect_plane(ray, s.planes[i].point, s.planes[i].normal, tmin, limit(), t))
+        if (intersect_plane(ray, s.planes[i].point, s.planes[i].normal, tmin, prim_limit, t))
             consider(base + static_cast<uint32_t>(i), t);
     }
     if (!found) return false;

@@ -34,6 +34,11 @@ BuildBox make_box(Vec3 lo, Vec3 hi) {
     return b;
 }
 
+BuildBox triangle_box(const std::vector<Vec3>& pos, const uint32_t v[3]) {
+    const Vec3 a = pos[v[0]], b = pos[v[1]], c = pos[v[2]];
+    return make_box(vmin(a, vmin(b, c)), vmax(a, vmax(b, c)));
+}
+
 BuildBox sphere_box(const Sphere& sp) {
     const Vec3 r{sp.radius, sp.radius, sp.radius};
     return make_box(sp.center - r, sp.center + r);
@@ -107,13 +112,13 @@ void add_mesh(Scene& s, MeshDesc& m, UninitVector<BuildBox>& boxes) {
                 continue;
             }
             t.material = m.material;
-            const Vec3 pa = pos[a], pb = pos[b], pc = pos[c];
-            boxes[first + f] = make_box(vmin(pa, vmin(pb, pc)), vmax(pa, vmax(pb, pc)));
+            boxes[first + f] = triangle_box(pos, t.v);
         }
     };
     if (faces >= kParallelFaces && std::thread::hardware_concurrency() > 1) {
         // One thread: the normals (about an eighth of the work), then the first
-        // part of the faces; this thread: the rest.
+        // part of the faces; this thread: the rest. Both compute the faces'
+        // cross products (degenerate()): sharing them would make one wait.
         const size_t split = faces * 2 / 5;
         std::thread helper = start_or_run([&] {
             if (smooth) accumulate_normals();
@@ -147,11 +152,7 @@ void add_mesh(Scene& s, MeshDesc& m, UninitVector<BuildBox>& boxes) {
 
 UninitVector<BuildBox> primitive_boxes(const Scene& s) {
     UninitVector<BuildBox> boxes(s.triangles.size() + s.spheres.size());
-    for (size_t i = 0; i < s.triangles.size(); ++i) {
-        const Triangle& t = s.triangles[i];
-        const Vec3 a = s.positions[t.v[0]], b = s.positions[t.v[1]], c = s.positions[t.v[2]];
-        boxes[i] = make_box(vmin(a, vmin(b, c)), vmax(a, vmax(b, c)));
-    }
+    for (size_t i = 0; i < s.triangles.size(); ++i) boxes[i] = triangle_box(s.positions, s.triangles[i].v);
     for (size_t i = 0; i < s.spheres.size(); ++i) boxes[s.triangles.size() + i] = sphere_box(s.spheres[i]);
     return boxes;
 }
