@@ -295,7 +295,8 @@ def mesh_files(scene_path):
 
 # ---------------------------------------------------------------- machine
 
-def machine_info(threads):
+def cpu_model():
+    """The CPU's model name (tests/report/report.py uses it too)."""
     cpu = platform.processor() or "unknown"
     try:
         with open("/proc/cpuinfo", encoding="utf-8") as f:
@@ -305,6 +306,11 @@ def machine_info(threads):
                     break
     except OSError:
         pass
+    return cpu
+
+
+def machine_info(threads):
+    cpu = cpu_model()
     mem = None
     try:
         with open("/proc/meminfo", encoding="utf-8") as f:

@@ -49,6 +49,8 @@ import time
 
 MAX_REPEATS = 150  # runs repeated because the machine was busy, in all
 REPO = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
+sys.path.insert(0, os.path.join(REPO, "tests", "bench"))
+from bench import cpu_model  # noqa: E402  (one reader of /proc/cpuinfo for both scripts)
 
 
 def log(msg):
@@ -479,15 +481,7 @@ def svg_chart(rows, title):
 # Machine
 
 def machine(threads, bins):
-    cpu = platform.processor() or "unknown"
-    try:
-        with open("/proc/cpuinfo", encoding="utf-8") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    cpu = line.split(":", 1)[1].strip()
-                    break
-    except OSError:
-        pass
+    cpu = cpu_model()
     try:
         cxx = subprocess.run([os.environ.get("CXX", "g++"), "--version"], capture_output=True,
                              text=True).stdout.splitlines()[0]
