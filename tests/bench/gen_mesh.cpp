@@ -428,6 +428,23 @@ int main(int argc, char** argv) {
         }
     }
     auto vid = [&](uint64_t i, uint64_t j) { return static_cast<uint32_t>((i % nu) * nv + (j % nv)); };
+    // Every triangle, in file order. Quad (i, j)-(i+1, j)-(i+1, j+1)-(i, j+1): d/dv x d/du
+    // points outwards, so each triangle goes along v first. The diagonal alternates in a
+    // checkerboard, as meshers do.
+    auto each_triangle = [&](auto&& f) {
+        for (uint64_t i = 0; i < nu; ++i) {
+            for (uint64_t j = 0; j < nv; ++j) {
+                const uint32_t p00 = vid(i, j), p10 = vid(i + 1, j), p11 = vid(i + 1, j + 1), p01 = vid(i, j + 1);
+                if ((i + j) & 1) {
+                    f(p00, p01, p11);
+                    f(p00, p11, p10);
+                } else {
+                    f(p00, p01, p10);
+                    f(p01, p11, p10);
+                }
+            }
+        }
+    };
 
     // PLY.
     const std::string ply_name = name + ".ply";
@@ -457,8 +474,6 @@ int main(int argc, char** argv) {
             buf.insert(buf.end(), b4, b4 + 4);
             flush(false);
         }
-        // Quad (i, j)-(i+1, j)-(i+1, j+1)-(i, j+1): d/dv x d/du points outwards, so each
-        // triangle goes along v first. Alternate the diagonal in a checkerboard, as meshers do.
         auto tri = [&](uint32_t a, uint32_t b, uint32_t c) {
             unsigned char rec[13];
             rec[0] = 3;
@@ -468,18 +483,7 @@ int main(int argc, char** argv) {
             buf.insert(buf.end(), rec, rec + 13);
             flush(false);
         };
-        for (uint64_t i = 0; i < nu; ++i) {
-            for (uint64_t j = 0; j < nv; ++j) {
-                const uint32_t p00 = vid(i, j), p10 = vid(i + 1, j), p11 = vid(i + 1, j + 1), p01 = vid(i, j + 1);
-                if ((i + j) & 1) {
-                    tri(p00, p01, p11);
-                    tri(p00, p11, p10);
-                } else {
-                    tri(p00, p01, p10);
-                    tri(p01, p11, p10);
-                }
-            }
-        }
+        each_triangle(tri);
         flush(true);
         out.commit();
     }
@@ -503,18 +507,7 @@ int main(int argc, char** argv) {
         if (aspect > 50) ++worst_count;
         worst = std::max(worst, aspect);
     };
-    for (uint64_t i = 0; i < nu; ++i) {
-        for (uint64_t j = 0; j < nv; ++j) {
-            const uint32_t p00 = vid(i, j), p10 = vid(i + 1, j), p11 = vid(i + 1, j + 1), p01 = vid(i, j + 1);
-            if ((i + j) & 1) {
-                stat(p00, p01, p11);
-                stat(p00, p11, p10);
-            } else {
-                stat(p00, p01, p10);
-                stat(p01, p11, p10);
-            }
-        }
-    }
+    each_triangle(stat);
     if (!(volume > 0)) die("internal error: the mesh faces inwards (signed volume " + std::to_string(volume) + ")");
 
     const std::string base = out_dir + "/" + name;
