@@ -43,7 +43,9 @@ void print_help() {
         "      --bvh-leaf N       largest BVH leaf (1..1024, default 8)\n"
         "      --bvh-bins N       SAH bins per axis (2..16, default 16)\n"
         "      --bvh-split MODE   sah (default) or median (object-median splits, no SAH)\n"
-        "      --bvh-cost F       SAH cost of a node visit relative to a primitive test (0.1..100, default 1)\n\n"
+        "      --bvh-cost F       SAH cost of a node visit relative to a leaf block test (0.1..100, default 1)\n"
+        "      --bvh-block N      primitives a leaf block holds in the SAH cost (1..16, default: as many as one\n"
+        "                         leaf test takes, 4 with AVX2)\n\n"
         "exit status: 0 all images written, 1 bad input or an image could not be written, 2 usage error\n",
         kUsage);
 }
@@ -143,6 +145,8 @@ Options parse_args(int argc, char** argv) {
             const double f = real_number(v);
             if (!(f >= 0.1) || !(f <= 100)) usage_error("--bvh-cost needs a number from 0.1 to 100, got '" + v + "'");
             o.bvh.traversal_cost = static_cast<float>(f);
+        } else if (a == "--bvh-block") {
+            o.bvh.block = static_cast<uint32_t>(whole_number(a, value("--bvh-block"), 1, 16));
         } else if (a == "--bvh-leaf") {
             o.bvh.max_leaf = static_cast<uint32_t>(whole_number(a, value("--bvh-leaf"), 1, 1024));
         } else if (a == "--bvh-bins") {

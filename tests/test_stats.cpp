@@ -341,6 +341,7 @@ TEST(Stats, DefaultBvhOptionsBuildTheSameTree) {
     EXPECT_EQ(o.max_leaf, 8u);
     EXPECT_EQ(o.bins, 16);
     EXPECT_FLOAT_EQ(o.traversal_cost, 1.0f);
+    EXPECT_EQ(o.block, rt::kLeafBlock);
     EXPECT_TRUE(o.sah);
     const rt::Scene b = rt::build_scene(d, o);
     ASSERT_EQ(a.bvh.nodes.size(), b.bvh.nodes.size());

@@ -74,11 +74,20 @@ private:
     size_t size_ = 0;
 };
 
+// Primitives a leaf tests at once (traverse.cpp): four triangles per AVX2 test
+// in double precision, otherwise one.
+#if defined(__AVX2__) && !defined(RT_REAL_FLOAT)
+inline constexpr uint32_t kLeafBlock = 4;
+#else
+inline constexpr uint32_t kLeafBlock = 1;
+#endif
+
 // Build quality knobs (the raytracer's hidden --bvh-* options, for measurements);
 // the defaults are what every render uses.
 struct BvhBuildOptions {
     uint32_t max_leaf = 8;      // a leaf never holds more primitives, whatever SAH says (1..64)
-    float traversal_cost = 1;   // SAH cost of one traversal step, relative to one primitive test
+    float traversal_cost = 1;   // SAH cost of one traversal step, relative to one leaf block test
+    uint32_t block = kLeafBlock;  // SAH counts a leaf's cost in blocks of this many primitives (1..16)
     int bins = 16;              // SAH bins per axis for large ranges (2..16; small ranges use fewer)
     bool sah = true;            // false: object-median splits only (fastest build, slower rays)
 };

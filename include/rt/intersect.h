@@ -42,27 +42,51 @@ constexpr T gamma_bound(int n) {
     return n * u / (1 - n * u);
 }
 
-// Watertight ray/triangle test. On a hit in (tmin, tmax) returns true with the
-// distance t and the barycentric weights (w0, w1, w2) of a, b, c.
-// With kCull, triangles whose counter-clockwise front faces away from the ray
-// are ignored (spec 2.9): the edge functions are then all >= 0 exactly when
-// dot(dir, (b - a) x (c - a)) < 0, so culling costs nothing extra.
-// With kShadow, a t within rounding error of 0 is no hit (see below).
-template <bool kCull = false, bool kShadow = false>
-inline bool intersect_triangle(const RayPre& p, Vec3 a, Vec3 b, Vec3 c, Real tmin, Real tmax,
-                               Real& t, Real w[3]) {
+// The first stage of the watertight triangle test: the vertices relative to the
+// ray origin, sheared (x, y) and unsheared (z), and the three edge functions,
+// u, v, w the unnormalised weights of a, b and c. The traversal computes these
+// for four triangles at once with the same operations (traverse.cpp), so both
+// paths give the same bits.
+struct TriEdges {
+    Real ax, ay, az, bx, by, bz, cx, cy, cz;
+    Real u, v, w;
+};
+
+inline TriEdges triangle_edges(const RayPre& p, Vec3 a, Vec3 b, Vec3 c) {
     const Vec3 A = a - p.ray.org, B = b - p.ray.org, C = c - p.ray.org;
-    const Real ax = A[p.kx] - p.sx * A[p.kz], ay = A[p.ky] - p.sy * A[p.kz];
-    const Real bx = B[p.kx] - p.sx * B[p.kz], by = B[p.ky] - p.sy * B[p.kz];
-    const Real cx = C[p.kx] - p.sx * C[p.kz], cy = C[p.ky] - p.sy * C[p.kz];
-    const Real u = cx * by - cy * bx;  // weight of a
-    const Real v = ax * cy - ay * cx;  // weight of b
-    const Real ww = bx * ay - by * ax;  // weight of c
-    if (kCull ? (u < 0 || v < 0 || ww < 0) : ((u < 0 || v < 0 || ww < 0) && (u > 0 || v > 0 || ww > 0)))
-        return false;
-    const Real det = u + v + ww;
+    TriEdges e;
+    e.az = A[p.kz];
+    e.bz = B[p.kz];
+    e.cz = C[p.kz];
+    e.ax = A[p.kx] - p.sx * e.az;
+    e.ay = A[p.ky] - p.sy * e.az;
+    e.bx = B[p.kx] - p.sx * e.bz;
+    e.by = B[p.ky] - p.sy * e.bz;
+    e.cx = C[p.kx] - p.sx * e.cz;
+    e.cy = C[p.ky] - p.sy * e.cz;
+    e.u = e.cx * e.by - e.cy * e.bx;
+    e.v = e.ax * e.cy - e.ay * e.cx;
+    e.w = e.bx * e.ay - e.by * e.ax;
+    return e;
+}
+
+// The ray passes inside the triangle's edges (or on them). With kCull, triangles
+// whose counter-clockwise front faces away from the ray are ignored (spec 2.9):
+// the edge functions are then all >= 0 exactly when dot(dir, (b - a) x (c - a)) < 0,
+// so culling costs nothing extra.
+template <bool kCull>
+inline bool inside_edges(Real u, Real v, Real w) {
+    return kCull ? !(u < 0 || v < 0 || w < 0) : !((u < 0 || v < 0 || w < 0) && (u > 0 || v > 0 || w > 0));
+}
+
+// The second stage, for a triangle inside whose edges the ray passes: the
+// distance, its range check and the weights. With kShadow, a t within rounding
+// error of 0 is no hit (see below).
+template <bool kShadow = false>
+inline bool triangle_hit(const RayPre& p, const TriEdges& e, Real tmin, Real tmax, Real& t, Real w[3]) {
+    const Real det = e.u + e.v + e.w;
     if (det == 0) return false;
-    const Real tz = p.sz * (u * A[p.kz] + v * B[p.kz] + ww * C[p.kz]);
+    const Real tz = p.sz * (e.u * e.az + e.v * e.bz + e.w * e.cz);
     // Reject hits behind the origin before dividing (t has the sign of tz * det).
     if (det > 0 ? tz <= 0 : tz >= 0) return false;
     const Real inv = Real(1) / det;
@@ -79,10 +103,10 @@ inline bool intersect_triangle(const RayPre& p, Vec3 a, Vec3 b, Vec3 c, Real tmi
     // rays pay for it (one bound per occluded ray): on every candidate hit of
     // closest-hit rays it cost 5-10% of render time.
     if (kShadow) {
-        const Real max_zt = std::fabs(p.sz) * std::fmax(std::fabs(A[p.kz]), std::fmax(std::fabs(B[p.kz]), std::fabs(C[p.kz])));
-        const Real max_xt = std::fmax(std::fabs(ax), std::fmax(std::fabs(bx), std::fabs(cx)));
-        const Real max_yt = std::fmax(std::fabs(ay), std::fmax(std::fabs(by), std::fabs(cy)));
-        const Real max_e = std::fmax(std::fabs(u), std::fmax(std::fabs(v), std::fabs(ww)));
+        const Real max_zt = std::fabs(p.sz) * std::fmax(std::fabs(e.az), std::fmax(std::fabs(e.bz), std::fabs(e.cz)));
+        const Real max_xt = std::fmax(std::fabs(e.ax), std::fmax(std::fabs(e.bx), std::fabs(e.cx)));
+        const Real max_yt = std::fmax(std::fabs(e.ay), std::fmax(std::fabs(e.by), std::fabs(e.cy)));
+        const Real max_e = std::fmax(std::fabs(e.u), std::fmax(std::fabs(e.v), std::fabs(e.w)));
         const Real dz = gamma_bound(3) * max_zt;
         const Real dx = gamma_bound(5) * (max_xt + max_zt), dy = gamma_bound(5) * (max_yt + max_zt);
         const Real de = 2 * (gamma_bound(2) * max_xt * max_yt + dy * max_xt + dx * max_yt);
@@ -92,10 +116,20 @@ inline bool intersect_triangle(const RayPre& p, Vec3 a, Vec3 b, Vec3 c, Real tmi
         if (tt <= dt) return false;
     }
     t = tt;
-    w[0] = u * inv;
-    w[1] = v * inv;
-    w[2] = ww * inv;
+    w[0] = e.u * inv;
+    w[1] = e.v * inv;
+    w[2] = e.w * inv;
     return true;
+}
+
+// Watertight ray/triangle test. On a hit in (tmin, tmax) returns true with the
+// distance t and the barycentric weights (w0, w1, w2) of a, b, c. kCull: see
+// inside_edges; kShadow: see triangle_hit.
+template <bool kCull = false, bool kShadow = false>
+inline bool intersect_triangle(const RayPre& p, Vec3 a, Vec3 b, Vec3 c, Real tmin, Real tmax,
+                               Real& t, Real w[3]) {
+    const TriEdges e = triangle_edges(p, a, b, c);
+    return inside_edges<kCull>(e.u, e.v, e.w) && triangle_hit<kShadow>(p, e, tmin, tmax, t, w);
 }
 
 // Nearest intersection of a unit-direction ray with a sphere in (tmin, tmax).

@@ -197,8 +197,11 @@ struct Builder {
     bool stays_leaf(const Range& r, float best) const {
         const float parent_area = r.box.area();
         const float split_cost = parent_area > 0 ? opt.traversal_cost + best / parent_area : HUGE_VALF;
-        return split_cost >= float(r.count()) && r.count() <= opt.max_leaf;
+        return split_cost >= blocks(r.count()) && r.count() <= opt.max_leaf;
     }
+
+    // The cost of testing n primitives: leaves test them `block` at a time.
+    float blocks(uint32_t n) const { return float((n + opt.block - 1) / opt.block); }
 
     // Bins r's centroids along all axes; returns false when r should stay a leaf,
     // otherwise the best axis and bin.
@@ -235,7 +238,7 @@ struct Builder {
                     acc = min8(acc, bins[axis][b]);
                     n += counts[axis][b];
                     if (n == 0 || right_count[b + 1] == 0) continue;
-                    const float cost = area8(acc) * float(n) + right_area[b + 1] * float(right_count[b + 1]);
+                    const float cost = area8(acc) * blocks(n) + right_area[b + 1] * blocks(right_count[b + 1]);
                     if (cost < best_cost) {
                         best_cost = cost;
                         best_axis = axis;
@@ -370,7 +373,7 @@ struct Builder {
         for (uint32_t k = 0; k < (n == 2 ? 1u : n); ++k) {
             FBox one, rest;
             for (uint32_t i = 0; i < n; ++i) (i == k ? one : rest).extend(p[i].lo, p[i].hi);
-            const float cost = one.area() + rest.area() * float(n - 1);
+            const float cost = one.area() + rest.area() * blocks(n - 1);
             if (cost < best) {
                 best = cost;
                 alone = k;
@@ -593,6 +596,7 @@ void Bvh::build(UninitVector<BuildBox>&& boxes, const BvhBuildOptions& options) 
     BvhBuildOptions opt = options;
     opt.max_leaf = std::min<uint32_t>(std::max<uint32_t>(opt.max_leaf, 1), 1024);  // Bvh4Node::count is 16 bits
     opt.bins = std::min(std::max(opt.bins, 2), kBins);
+    opt.block = std::min<uint32_t>(std::max<uint32_t>(opt.block, 1), 16);
     Builder b{boxes.data(), nodes, next, max_depth, spare, opt};
     Range root{0, n, {}, {}, false};
     b.bounds(root);

@@ -92,6 +92,123 @@ inline bool hit_prim(const Scene& s, const RayPre& p, uint32_t id, Real tmin, Re
     return intersect_sphere(p.ray, sp.center, sp.radius, tmin, tmax, t);
 }
 
+#if defined(__AVX2__) && !defined(RT_REAL_FLOAT)
+// Leaves test their triangles four at a time: the edge stage of the watertight
+// test (triangle_edges) for four triangles with AVX2, the same operations lane by
+// lane, so the same bits as one at a time. The loads of all four triangles and
+// their twelve vertices are issued together instead of each waiting behind the
+// previous triangle's branches; the rest of the test (triangle_hit) runs only for
+// the lanes whose edges the ray passes, in leaf order.
+
+struct Edges4 {
+    alignas(32) double ax[4], ay[4], az[4], bx[4], by[4], bz[4], cx[4], cy[4], cz[4], u[4], v[4], w[4];
+    TriEdges lane(int j) const {
+        return {ax[j], ay[j], az[j], bx[j], by[j], bz[j], cx[j], cy[j], cz[j], u[j], v[j], w[j]};
+    }
+};
+
+// Edge stage of triangles ids[0 .. n) (1 <= n <= 4); returns the mask of those
+// inside whose edges the ray passes (inside_edges), with their values in `e`.
+template <bool kCull>
+inline int edges4(const Scene& s, const RayPre& p, const uint32_t ids[4], int n, Edges4& e) {
+    // The four triangles' vertex indices, transposed: v0 of each, v1 of each, v2 of each.
+    __m128i t[4];
+    for (int j = 0; j < 4; ++j)
+        t[j] = _mm_loadu_si128(reinterpret_cast<const __m128i*>(&s.triangles[ids[j < n ? j : n - 1]]));
+    const __m128i lo01 = _mm_unpacklo_epi32(t[0], t[1]), lo23 = _mm_unpacklo_epi32(t[2], t[3]);
+    const __m128i hi01 = _mm_unpackhi_epi32(t[0], t[1]), hi23 = _mm_unpackhi_epi32(t[2], t[3]);
+    const __m128i vi[3] = {_mm_unpacklo_epi64(lo01, lo23), _mm_unpackhi_epi64(lo01, lo23),
+                           _mm_unpacklo_epi64(hi01, hi23)};
+    const double* base = &s.positions.data()->x;
+    const __m256d sx = _mm256_set1_pd(p.sx), sy = _mm256_set1_pd(p.sy);
+    const __m256d ox = _mm256_set1_pd(p.ray.org[p.kx]), oy = _mm256_set1_pd(p.ray.org[p.ky]),
+                  oz = _mm256_set1_pd(p.ray.org[p.kz]);
+    __m256d x[3], y[3], z[3];
+    for (int k = 0; k < 3; ++k) {
+        const __m256i i64 = _mm256_cvtepu32_epi64(vi[k]);
+        const __m256i i3 = _mm256_add_epi64(i64, _mm256_slli_epi64(i64, 1));  // Vec3 = 3 doubles
+        z[k] = _mm256_sub_pd(_mm256_i64gather_pd(base + p.kz, i3, 8), oz);
+        x[k] = _mm256_sub_pd(_mm256_sub_pd(_mm256_i64gather_pd(base + p.kx, i3, 8), ox), _mm256_mul_pd(sx, z[k]));
+        y[k] = _mm256_sub_pd(_mm256_sub_pd(_mm256_i64gather_pd(base + p.ky, i3, 8), oy), _mm256_mul_pd(sy, z[k]));
+    }
+    const __m256d u = _mm256_sub_pd(_mm256_mul_pd(x[2], y[1]), _mm256_mul_pd(y[2], x[1]));
+    const __m256d v = _mm256_sub_pd(_mm256_mul_pd(x[0], y[2]), _mm256_mul_pd(y[0], x[2]));
+    const __m256d w = _mm256_sub_pd(_mm256_mul_pd(x[1], y[0]), _mm256_mul_pd(y[1], x[0]));
+    const __m256d zero = _mm256_setzero_pd();
+    const int neg = _mm256_movemask_pd(_mm256_or_pd(
+        _mm256_or_pd(_mm256_cmp_pd(u, zero, _CMP_LT_OQ), _mm256_cmp_pd(v, zero, _CMP_LT_OQ)),
+        _mm256_cmp_pd(w, zero, _CMP_LT_OQ)));
+    int out;
+    if (kCull) {
+        out = ~neg;
+    } else {
+        const int pos = _mm256_movemask_pd(_mm256_or_pd(
+            _mm256_or_pd(_mm256_cmp_pd(u, zero, _CMP_GT_OQ), _mm256_cmp_pd(v, zero, _CMP_GT_OQ)),
+            _mm256_cmp_pd(w, zero, _CMP_GT_OQ)));
+        out = ~(neg & pos);
+    }
+    out &= (1 << n) - 1;
+    if (out) {
+        _mm256_store_pd(e.ax, x[0]);
+        _mm256_store_pd(e.ay, y[0]);
+        _mm256_store_pd(e.az, z[0]);
+        _mm256_store_pd(e.bx, x[1]);
+        _mm256_store_pd(e.by, y[1]);
+        _mm256_store_pd(e.bz, z[1]);
+        _mm256_store_pd(e.cx, x[2]);
+        _mm256_store_pd(e.cy, y[2]);
+        _mm256_store_pd(e.cz, z[2]);
+        _mm256_store_pd(e.u, u);
+        _mm256_store_pd(e.v, v);
+        _mm256_store_pd(e.w, w);
+    }
+    return out;
+}
+
+// Calls hit(id, t, w) for every primitive of prims[first, end) that the ray hits
+// in (tmin, limit()), in leaf order; `limit` is read again after each hit and
+// hit() returns true to stop early.
+template <bool kCull, bool kShadow, class Limit, class OnHit>
+inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint32_t end, Real tmin, const Limit& limit,
+                      Real w[3], const OnHit& hit) {
+    const uint32_t ntri = static_cast<uint32_t>(s.triangles.size());
+    for (uint32_t i = first; i < end; i += 4) {
+        const int n = static_cast<int>(std::min<uint32_t>(4, end - i));
+        uint32_t ids[4];
+        bool triangles = true;
+        for (int j = 0; j < n; ++j) {
+            ids[j] = s.bvh.prims[i + j];
+            triangles &= ids[j] < ntri;
+        }
+        if (!triangles) {  // spheres among them: one at a time
+            for (int j = 0; j < n; ++j) {
+                Real t;
+                if (hit_prim<kCull, kShadow>(s, p, ids[j], tmin, limit(), t, w) && hit(ids[j], t)) return true;
+            }
+            continue;
+        }
+        Edges4 e;
+        for (int mask = edges4<kCull>(s, p, ids, n, e); mask; mask &= mask - 1) {
+            const int j = __builtin_ctz(mask);
+            Real t;
+            if (triangle_hit<kShadow>(p, e.lane(j), tmin, limit(), t, w) && hit(ids[j], t)) return true;
+        }
+    }
+    return false;
+}
+#else
+template <bool kCull, bool kShadow, class Limit, class OnHit>
+inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint32_t end, Real tmin, const Limit& limit,
+                      Real w[3], const OnHit& hit) {
+    for (uint32_t i = first; i < end; ++i) {
+        const uint32_t id = s.bvh.prims[i];
+        Real t;
+        if (hit_prim<kCull, kShadow>(s, p, id, tmin, limit(), t, w) && hit(id, t)) return true;
+    }
+    return false;
+}
+#endif
+
 struct StackEntry {
     int32_t child;   // node index, or ~first for a leaf
     uint16_t count;  // leaf size
@@ -135,11 +252,12 @@ bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
         StackEntry e{0, 0, double(tmin)};
         for (;;) {
             if (e.child < 0) {
-                for (uint32_t i = ~static_cast<uint32_t>(e.child), end = i + e.count; i < end; ++i) {
-                    const uint32_t id = s.bvh.prims[i];
-                    Real t;
-                    if (hit_prim<kCull>(s, p, id, tmin, prim_limit, t, w)) consider(id, t);
-                }
+                const uint32_t first = ~static_cast<uint32_t>(e.child);
+                test_leaf<kCull, false>(s, p, first, first + e.count, tmin, [&] { return prim_limit; }, w,
+                                        [&](uint32_t id, Real t) {
+                                            consider(id, t);
+                                            return false;
+                                        });
             } else {
                 const Bvh4Node& n = s.bvh.nodes[e.child];
                 double t[4];
@@ -220,13 +338,13 @@ bool any_hit(const Scene& s, const Ray& ray, Real tmin, Real tmax, uint32_t* occ
     uint16_t count = 0;
     for (;;) {
         if (child < 0) {
-            for (uint32_t i = ~static_cast<uint32_t>(child), end = i + count; i < end; ++i) {
-                Real t;
-                if (hit_prim<false, true>(s, p, s.bvh.prims[i], tmin, tmax, t, w)) {
-                    if (occluder) *occluder = s.bvh.prims[i];
-                    return true;
-                }
-            }
+            const uint32_t first = ~static_cast<uint32_t>(child);
+            if (test_leaf<false, true>(s, p, first, first + count, tmin, [&] { return tmax; }, w,
+                                       [&](uint32_t id, Real) {
+                                           if (occluder) *occluder = id;
+                                           return true;
+                                       }))
+                return true;
         } else {
             const Bvh4Node& n = s.bvh.nodes[child];
             double t[4];

@@ -72,6 +72,7 @@ std::string stats_json(const std::vector<ImageRecord>& images, const std::string
                     {"max_leaf", r.bvh.max_leaf},
                     {"bins", r.bvh.bins},
                     {"traversal_cost", r.bvh.traversal_cost},
+                    {"block", r.bvh.block},
                     {"split", r.bvh.sah ? "sah" : "median"}};
         j["peak_rss_bytes"] = r.peak_rss;
         list.push_back(std::move(j));
