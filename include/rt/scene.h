@@ -61,6 +61,13 @@ struct Scene {
 
     // Over primitive ids: [0, triangles.size()) are triangles, the rest spheres.
     Bvh bvh;
+    // Each triangle's vertices a, b, c as 9 floats, in BVH leaf order (entry i is
+    // triangle bvh.prims[i]), so that a leaf's triangles are one block of memory
+    // instead of a chain of loads (prims, triangles, positions). Present only when
+    // it changes no number the tests see: every vertex coordinate is a float
+    // exactly (PLY meshes are), there are no spheres, and leaves test four
+    // triangles at once (kLeafBlock); empty otherwise.
+    UninitVector<float> leaf_vertices;
     size_t degenerate_triangles = 0;  // skipped at build time
 
     Real build_seconds = 0;  // BVH build time, for the per-image report line

@@ -107,10 +107,15 @@ struct Edges4 {
     }
 };
 
-// Edge stage of triangles ids[0 .. n) (1 <= n <= 4); returns the mask of those
-// inside whose edges the ray passes (inside_edges), with their values in `e`.
-template <bool kCull>
-inline int edges4(const Scene& s, const RayPre& p, const uint32_t ids[4], int n, Edges4& e) {
+// The vertices of four triangles, relative to the ray origin, for the edge stage:
+// v[k][0..2] = components kx, ky, kz of vertex k of each lane.
+struct Vertices4 {
+    __m256d v[3][3];
+};
+
+// Vertices of triangles ids[0 .. n) (1 <= n <= 4; lanes past n repeat lane n - 1)
+// through their indices into Scene::positions.
+inline Vertices4 indexed_vertices4(const Scene& s, const RayPre& p, const uint32_t ids[4], int n) {
     // The four triangles' vertex indices, transposed: v0 of each, v1 of each, v2 of each.
     __m128i t[4];
     for (int j = 0; j < 4; ++j)
@@ -120,16 +125,42 @@ inline int edges4(const Scene& s, const RayPre& p, const uint32_t ids[4], int n,
     const __m128i vi[3] = {_mm_unpacklo_epi64(lo01, lo23), _mm_unpackhi_epi64(lo01, lo23),
                            _mm_unpacklo_epi64(hi01, hi23)};
     const double* base = &s.positions.data()->x;
-    const __m256d sx = _mm256_set1_pd(p.sx), sy = _mm256_set1_pd(p.sy);
-    const __m256d ox = _mm256_set1_pd(p.ray.org[p.kx]), oy = _mm256_set1_pd(p.ray.org[p.ky]),
-                  oz = _mm256_set1_pd(p.ray.org[p.kz]);
-    __m256d x[3], y[3], z[3];
+    const int axis[3] = {p.kx, p.ky, p.kz};
+    Vertices4 r;
     for (int k = 0; k < 3; ++k) {
         const __m256i i64 = _mm256_cvtepu32_epi64(vi[k]);
         const __m256i i3 = _mm256_add_epi64(i64, _mm256_slli_epi64(i64, 1));  // Vec3 = 3 doubles
-        z[k] = _mm256_sub_pd(_mm256_i64gather_pd(base + p.kz, i3, 8), oz);
-        x[k] = _mm256_sub_pd(_mm256_sub_pd(_mm256_i64gather_pd(base + p.kx, i3, 8), ox), _mm256_mul_pd(sx, z[k]));
-        y[k] = _mm256_sub_pd(_mm256_sub_pd(_mm256_i64gather_pd(base + p.ky, i3, 8), oy), _mm256_mul_pd(sy, z[k]));
+        for (int c = 0; c < 3; ++c)
+            r.v[k][c] = _mm256_sub_pd(_mm256_i64gather_pd(base + axis[c], i3, 8), _mm256_set1_pd(p.ray.org[axis[c]]));
+    }
+    return r;
+}
+
+// Vertices of the triangles at leaf positions first .. first + n from
+// Scene::leaf_vertices (floats that equal the positions exactly).
+inline Vertices4 leaf_vertices4(const Scene& s, const RayPre& p, uint32_t first, int n) {
+    const float* base = s.leaf_vertices.data() + size_t(first) * 9;
+    const __m128i lane = _mm_min_epi32(_mm_setr_epi32(0, 1, 2, 3), _mm_set1_epi32(n - 1));
+    const __m128i idx = _mm_mullo_epi32(lane, _mm_set1_epi32(9));
+    const int axis[3] = {p.kx, p.ky, p.kz};
+    Vertices4 r;
+    for (int k = 0; k < 3; ++k)
+        for (int c = 0; c < 3; ++c)
+            r.v[k][c] = _mm256_sub_pd(_mm256_cvtps_pd(_mm_i32gather_ps(base + 3 * k + axis[c], idx, 4)),
+                                      _mm256_set1_pd(p.ray.org[axis[c]]));
+    return r;
+}
+
+// Edge stage of four triangles whose first n lanes count; returns the mask of
+// those inside whose edges the ray passes (inside_edges), with their values in `e`.
+template <bool kCull>
+inline int edges4(const RayPre& p, const Vertices4& vx, int n, Edges4& e) {
+    const __m256d sx = _mm256_set1_pd(p.sx), sy = _mm256_set1_pd(p.sy);
+    __m256d x[3], y[3], z[3];
+    for (int k = 0; k < 3; ++k) {
+        z[k] = vx.v[k][2];
+        x[k] = _mm256_sub_pd(vx.v[k][0], _mm256_mul_pd(sx, z[k]));
+        y[k] = _mm256_sub_pd(vx.v[k][1], _mm256_mul_pd(sy, z[k]));
     }
     const __m256d u = _mm256_sub_pd(_mm256_mul_pd(x[2], y[1]), _mm256_mul_pd(y[2], x[1]));
     const __m256d v = _mm256_sub_pd(_mm256_mul_pd(x[0], y[2]), _mm256_mul_pd(y[0], x[2]));
@@ -171,6 +202,19 @@ inline int edges4(const Scene& s, const RayPre& p, const uint32_t ids[4], int n,
 template <bool kCull, bool kShadow, class Limit, class OnHit>
 inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint32_t end, Real tmin, const Limit& limit,
                       Real w[3], const OnHit& hit) {
+    if (!s.leaf_vertices.empty()) {
+        // The leaf's vertices are one block; primitive ids are read only for hits.
+        for (uint32_t i = first; i < end; i += 4) {
+            const int n = static_cast<int>(std::min<uint32_t>(4, end - i));
+            Edges4 e;
+            for (int mask = edges4<kCull>(p, leaf_vertices4(s, p, i, n), n, e); mask; mask &= mask - 1) {
+                const int j = __builtin_ctz(mask);
+                Real t;
+                if (triangle_hit<kShadow>(p, e.lane(j), tmin, limit(), t, w) && hit(s.bvh.prims[i + j], t)) return true;
+            }
+        }
+        return false;
+    }
     const uint32_t ntri = static_cast<uint32_t>(s.triangles.size());
     for (uint32_t i = first; i < end; i += 4) {
         const int n = static_cast<int>(std::min<uint32_t>(4, end - i));
@@ -188,7 +232,7 @@ inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint32_t 
             continue;
         }
         Edges4 e;
-        for (int mask = edges4<kCull>(s, p, ids, n, e); mask; mask &= mask - 1) {
+        for (int mask = edges4<kCull>(p, indexed_vertices4(s, p, ids, n), n, e); mask; mask &= mask - 1) {
             const int j = __builtin_ctz(mask);
             Real t;
             if (triangle_hit<kShadow>(p, e.lane(j), tmin, limit(), t, w) && hit(ids[j], t)) return true;
