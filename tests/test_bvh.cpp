@@ -421,7 +421,7 @@ void shoot(const rt::Scene& s, Checker& ck, Rng& rng, int rays, Real extent) {
 [[gnu::noinline]] Real to_float(Real x) { return Real(float(x)); }
 
 // float_vertices: the mesh's positions rounded to float, as a PLY mesh's are, so
-// that leaves read them from Scene::leaf_vertices (when there are no spheres).
+// that leaves read them from Scene::leaf_vertices() (when there are no spheres).
 void run_soup(const SoupSpec& spec, int rays, bool float_vertices = false) {
     SCOPED_TRACE("seed " + std::to_string(spec.seed) + ", " + std::to_string(spec.triangles) + " triangles, " +
                  std::to_string(spec.spheres) + " spheres" + (float_vertices ? ", float vertices" : ""));
@@ -434,7 +434,13 @@ void run_soup(const SoupSpec& spec, int rays, bool float_vertices = false) {
     check_structure(s);
     // The leaf-order copy exists exactly when it changes no number (scene.h).
     const bool want_copy = float_vertices && rt::kLeafBlock > 1 && s.spheres.empty() && !s.triangles.empty();
-    EXPECT_EQ(s.leaf_vertices.size(), want_copy ? s.bvh.prims.size() * 9 : 0u);
+    EXPECT_EQ(s.leaf_vertices() != nullptr, want_copy);
+    if (want_copy) {  // the copy holds each leaf triangle's vertices
+        ASSERT_GE(s.leaf_storage.size() * sizeof(rt::BuildBox), s.bvh.prims.size() * 9 * sizeof(float));
+        const size_t i = s.bvh.prims.size() - 1;
+        const rt::Triangle& t = s.triangles[s.bvh.prims[i]];
+        EXPECT_EQ(Real(s.leaf_vertices()[9 * i + 8]), s.positions[t.v[2]].z);
+    }
     Checker ck{s};
     shoot(s, ck, rng, rays, spec.extent);
     EXPECT_EQ(ck.mismatches, 0) << "of " << ck.queries << " queries";

@@ -97,8 +97,10 @@ struct Bvh {
     std::vector<uint32_t> prims;  // primitive ids in leaf order
     int depth = 0;                // of the 4-wide tree, root = 1
 
-    // Builds over `boxes[i]` (one box per primitive id i); frees `boxes`.
-    void build(UninitVector<BuildBox>&& boxes, const BvhBuildOptions& options = {});
+    // Builds over `boxes[i]` (one box per primitive id i), sorting them in place:
+    // their contents are unspecified afterwards, their storage the caller's to
+    // free or reuse (build_scene reuses it for Scene::leaf_storage).
+    void build(UninitVector<BuildBox>& boxes, const BvhBuildOptions& options = {});
 };
 
 }  // namespace rt

@@ -66,8 +66,13 @@ struct Scene {
     // instead of a chain of loads (prims, triangles, positions). Present only when
     // it changes no number the tests see: every vertex coordinate is a float
     // exactly (PLY meshes are), there are no spheres, and leaves test four
-    // triangles at once (kLeafBlock); empty otherwise.
-    UninitVector<float> leaf_vertices;
+    // triangles at once (kLeafBlock); null otherwise. The storage is the BVH
+    // build's box array, reused (its pages are already touched: on this VM a
+    // fresh page costs more than the copy into it).
+    UninitVector<BuildBox> leaf_storage;
+    const float* leaf_vertices() const {
+        return leaf_storage.empty() ? nullptr : reinterpret_cast<const float*>(leaf_storage.data());
+    }
     size_t degenerate_triangles = 0;  // skipped at build time
 
     Real build_seconds = 0;  // BVH build time, for the per-image report line

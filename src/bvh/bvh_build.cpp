@@ -578,7 +578,7 @@ struct Builder {
 
 }  // namespace
 
-void Bvh::build(UninitVector<BuildBox>&& boxes, const BvhBuildOptions& options) {
+void Bvh::build(UninitVector<BuildBox>& boxes, const BvhBuildOptions& options) {
     nodes.clear();
     prims.clear();
     depth = 0;
@@ -616,7 +616,6 @@ void Bvh::build(UninitVector<BuildBox>&& boxes, const BvhBuildOptions& options) 
 
     prims.resize(n);
     for (uint32_t i = 0; i < n; ++i) prims[i] = boxes[i].id;
-    UninitVector<BuildBox>().swap(boxes);
 }
 
 }  // namespace rt

@@ -137,9 +137,9 @@ inline Vertices4 indexed_vertices4(const Scene& s, const RayPre& p, const uint32
 }
 
 // Vertices of the triangles at leaf positions first .. first + n from
-// Scene::leaf_vertices (floats that equal the positions exactly).
-inline Vertices4 leaf_vertices4(const Scene& s, const RayPre& p, uint32_t first, int n) {
-    const float* base = s.leaf_vertices.data() + size_t(first) * 9;
+// Scene::leaf_vertices() (floats that equal the positions exactly).
+inline Vertices4 leaf_vertices4(const float* leaf_vertices, const RayPre& p, uint32_t first, int n) {
+    const float* base = leaf_vertices + size_t(first) * 9;
     const __m128i lane = _mm_min_epi32(_mm_setr_epi32(0, 1, 2, 3), _mm_set1_epi32(n - 1));
     const __m128i idx = _mm_mullo_epi32(lane, _mm_set1_epi32(9));
     const int axis[3] = {p.kx, p.ky, p.kz};
@@ -202,12 +202,12 @@ inline int edges4(const RayPre& p, const Vertices4& vx, int n, Edges4& e) {
 template <bool kCull, bool kShadow, class Limit, class OnHit>
 inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint32_t end, Real tmin, const Limit& limit,
                       Real w[3], const OnHit& hit) {
-    if (!s.leaf_vertices.empty()) {
+    if (const float* leaf_vertices = s.leaf_vertices()) {
         // The leaf's vertices are one block; primitive ids are read only for hits.
         for (uint32_t i = first; i < end; i += 4) {
             const int n = static_cast<int>(std::min<uint32_t>(4, end - i));
             Edges4 e;
-            for (int mask = edges4<kCull>(p, leaf_vertices4(s, p, i, n), n, e); mask; mask &= mask - 1) {
+            for (int mask = edges4<kCull>(p, leaf_vertices4(leaf_vertices, p, i, n), n, e); mask; mask &= mask - 1) {
                 const int j = __builtin_ctz(mask);
                 Real t;
                 if (triangle_hit<kShadow>(p, e.lane(j), tmin, limit(), t, w) && hit(s.bvh.prims[i + j], t)) return true;

@@ -1,4 +1,5 @@
 // SceneDesc -> Scene: flat arrays, normals, BVH.
+#include <algorithm>
 #include <chrono>
 #include <thread>
 #include <utility>
@@ -164,33 +165,36 @@ namespace {
 // (seen on `v = {double(float(v.x)), double(float(v.y)), double(float(v.z))}`).
 [[gnu::noinline]] bool is_float(Real x) { return Real(float(x)) == x; }
 
-// Scene::leaf_vertices, when every position is a float exactly; two threads
-// copy half each (a 16M-triangle mesh: 0.2 s, within the BVH phase).
-void copy_leaf_vertices(Scene& s) {
+// Scene::leaf_vertices(), when every position is a float exactly, written over
+// `boxes` once the BVH build is done with them (reserved with room for 36 bytes
+// per primitive, so the resize moves nothing); two threads copy half each.
+void copy_leaf_vertices(Scene& s, UninitVector<BuildBox>& boxes) {
     if (kLeafBlock == 1 || !s.spheres.empty() || s.triangles.empty()) return;
     for (const Vec3& p : s.positions)
         if (!is_float(p.x) || !is_float(p.y) || !is_float(p.z)) return;
     const size_t n = s.bvh.prims.size();
-    s.leaf_vertices.resize(n * 9);
-    auto copy = [&s](size_t begin, size_t end) {
+    boxes.resize((n * 9 * sizeof(float) + sizeof(BuildBox) - 1) / sizeof(BuildBox));
+    float* const out = reinterpret_cast<float*>(boxes.data());
+    auto copy = [&s, out](size_t begin, size_t end) {
         for (size_t i = begin; i < end; ++i) {
             const Triangle& t = s.triangles[s.bvh.prims[i]];
-            float* out = &s.leaf_vertices[i * 9];
+            float* o = out + i * 9;
             for (int k = 0; k < 3; ++k) {
                 const Vec3& v = s.positions[t.v[k]];
-                out[3 * k] = float(v.x);
-                out[3 * k + 1] = float(v.y);
-                out[3 * k + 2] = float(v.z);
+                o[3 * k] = float(v.x);
+                o[3 * k + 1] = float(v.y);
+                o[3 * k + 2] = float(v.z);
             }
         }
     };
     if (n < (1u << 16)) {
         copy(0, n);
-        return;
+    } else {
+        std::thread helper = start_or_run([&] { copy(0, n / 2); });
+        copy(n / 2, n);
+        if (helper.joinable()) helper.join();
     }
-    std::thread helper = start_or_run([&] { copy(0, n / 2); });
-    copy(n / 2, n);
-    if (helper.joinable()) helper.join();
+    s.leaf_storage = std::move(boxes);
 }
 
 // Builds everything, moving or releasing each mesh of `d` once it is copied.
@@ -214,7 +218,8 @@ Scene build(SceneDesc& d, const BvhBuildOptions& bvh) {
     s.triangles.reserve(ntri);
     // Primitive boxes for the BVH: triangles first, in order, then spheres.
     UninitVector<BuildBox> boxes;
-    boxes.reserve(ntri + d.spheres.size());
+    // Room for the leaf-order vertices that may reuse this array (copy_leaf_vertices).
+    boxes.reserve(std::max(ntri + d.spheres.size(), (ntri * 9 * sizeof(float) + sizeof(BuildBox) - 1) / sizeof(BuildBox)));
     for (size_t i = 0; i < d.meshes.size(); ++i) {
         add_mesh(s, d.meshes[i], boxes);
         std::vector<Vec3>().swap(d.meshes[i].positions);
@@ -225,8 +230,8 @@ Scene build(SceneDesc& d, const BvhBuildOptions& bvh) {
 
     for (const Sphere& sp : s.spheres) boxes.push_back(sphere_box(sp));
     const auto t0 = std::chrono::steady_clock::now();
-    s.bvh.build(std::move(boxes), bvh);
-    copy_leaf_vertices(s);
+    s.bvh.build(boxes, bvh);
+    copy_leaf_vertices(s, boxes);
     s.build_seconds = std::chrono::duration<Real>(std::chrono::steady_clock::now() - t0).count();
     return s;
 }

@@ -94,7 +94,7 @@ int main(int argc, char** argv) {
             rt::Bvh bvh;
             const double c0 = cpu_seconds();
             const auto t0 = std::chrono::steady_clock::now();
-            bvh.build(std::move(boxes), opt);
+            bvh.build(boxes, opt);
             wall.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
             cpu.push_back(cpu_seconds() - c0);
             cost = sah_cost(bvh);
