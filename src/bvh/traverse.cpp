@@ -196,9 +196,9 @@ inline int edges4(const RayPre& p, const Vertices4& vx, int n, Edges4& e) {
     return out;
 }
 
-// Calls hit(id, t, w) for every primitive of prims[first, end) that the ray hits
-// in (tmin, limit()), in leaf order; `limit` is read again after each hit and
-// hit() returns true to stop early.
+// Calls hit(id, t) (weights in w) for every primitive of prims[first, end) that
+// the ray hits in (tmin, limit()), in leaf order; limit() is read again for each
+// test, and hit() returns true to stop early (test_leaf then returns true).
 template <bool kCull, bool kShadow, class Limit, class OnHit>
 inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint32_t end, Real tmin, const Limit& limit,
                       Real w[3], const OnHit& hit) {

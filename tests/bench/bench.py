@@ -568,6 +568,13 @@ def report(results, meta):
     else:
         s_all = sum(r["ours_median"] for r in results if r["ours_median"] is not None)
         out.append(f"**Total** (ours only): {s_all:.2f} s.")
+    official = [r for r in both if r["kind"] != "large"]
+    if official and len(official) < len(both):
+        o_ours = sum(r["ours_median"] for r in official)
+        o_ref = sum(r["ref_median"] for r in official)
+        out.append("")
+        out.append(f"**Official scenes** ({len(official)} files): ours {o_ours:.3f} s, refrender {o_ref:.3f} s, "
+                   f"ratio {o_ours / o_ref:.2f}.")
     slow = [r["name"] for r in both if r["ratio"] > 1.5]
     out.append("")
     out.append(f"**Ours slower than 1.5x refrender on {len(slow)} of {len(both)} scenes**"
@@ -588,7 +595,8 @@ def report(results, meta):
         out.append("")
         out.append("## Large scenes: build cost and memory")
         out.append("")
-        header = ["scene", "triangles", "ours load+bvh s", "ref parse+bvh s", "ours B/tri", "ref B/tri"]
+        header = ["scene", "triangles", "ours load+bvh s", "ref parse+bvh s", "ours render s", "ref render s",
+                  "render ratio", "ours B/tri", "ref B/tri"]
         rows = []
         for r in large:
             p = r["phases"] or {}
@@ -597,12 +605,15 @@ def report(results, meta):
             lb = p["load"] + p["bvh"] if p else None
             rlb = rp["parse"] + rp["bvh"] if rp else None
             bpt = lambda rss: "n/a" if rss is None or not tris else f"{rss / tris:.0f}"
-            rows.append([r["name"], tris or "?", fmt_s(lb, 2), fmt_s(rlb, 2), bpt(r["ours_maxrss"]),
-                         bpt(r["ref_maxrss"])])
-        out.append(table(header, rows, ["l", "r", "r", "r", "r", "r"]))
+            ren, rren = p.get("render"), rp.get("render")
+            rratio = f"{ren / rren:.2f}" if ren is not None and rren else "n/a"
+            rows.append([r["name"], tris or "?", fmt_s(lb, 2), fmt_s(rlb, 2), fmt_s(ren), fmt_s(rren), rratio,
+                         bpt(r["ours_maxrss"]), bpt(r["ref_maxrss"])])
+        out.append(table(header, rows, ["l", "r", "r", "r", "r", "r", "r", "r", "r"]))
         out.append("")
-        out.append("B/tri: peak RSS of the whole process over the scene's triangle count (ours' count, "
-                   "which includes the 2 ground triangles).")
+        out.append("Render: the render phase alone (ours: median of our phase split; refrender: median of "
+                   "its own render= figures). B/tri: peak RSS of the whole process over the scene's "
+                   "triangle count (ours' count, which includes the 2 ground triangles).")
     notes = {}
     for r in results:
         for n in r["notes"]:
