@@ -357,7 +357,7 @@ TEST(FuzzRegressions, PlyInputsAreRefusedOrLoaded) {
         const auto t0 = std::chrono::steady_clock::now();
         try {
             rt::PlyMesh m = rt::parse_ply(bytes.data(), bytes.size(), f);
-            for (uint32_t i : m.indices) ASSERT_LT(i, m.positions.size() / 3);
+            for (uint32_t i : m.indices) ASSERT_LT(i, m.positions.size());
         } catch (const rt::InputError& e) {
             EXPECT_EQ(std::string(e.what()).rfind(f + ": ", 0), 0u) << e.what();
         }

@@ -10,11 +10,16 @@
 #include <string>
 #include <vector>
 
+#include "rt/math.h"
+
 namespace rt {
 
 struct PlyMesh {
-    std::vector<double> positions;  // x y z per vertex
-    std::vector<uint32_t> indices;  // 3 per triangle, 0-based into positions/3
+    // One per vertex, in the renderer's precision (Real), so the scene loader takes
+    // the vector as it is: at 16M triangles a copy was 192 MB of fresh pages.
+    // Coordinates are checked finite in the file's own type before conversion.
+    std::vector<Vec3> positions;
+    std::vector<uint32_t> indices;  // 3 per triangle, 0-based into positions
     size_t polygons_split = 0;      // faces with more than 3 vertices that were fan-split
 };
 

@@ -464,13 +464,11 @@ private:
                     fail(fp + "/_plyFile", e.what());
                 }
                 for (size_t i = 0; i < pm.positions.size(); ++i)
-                    if (!(std::fabs(pm.positions[i]) <= kMaxMagnitude))
-                        fail(fp + "/_plyFile", ply_path + ": vertex " + std::to_string(i / 3) +
-                                                   ": coordinate beyond +-1e30: " + format_id(pm.positions[i]));
-                mesh.positions.resize(pm.positions.size() / 3);
-                for (size_t i = 0; i < mesh.positions.size(); ++i)
-                    mesh.positions[i] = {static_cast<Real>(pm.positions[3 * i]), static_cast<Real>(pm.positions[3 * i + 1]),
-                                         static_cast<Real>(pm.positions[3 * i + 2])};
+                    for (int a = 0; a < 3; ++a)
+                        if (!(std::fabs(pm.positions[i][a]) <= kMaxMagnitude))
+                            fail(fp + "/_plyFile", ply_path + ": vertex " + std::to_string(i) +
+                                                       ": coordinate beyond +-1e30: " + format_id(pm.positions[i][a]));
+                mesh.positions = std::move(pm.positions);
                 mesh.indices = std::move(pm.indices);
                 mesh.source = ply_path;
                 out_.ply_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - ply_t0).count();

@@ -633,9 +633,9 @@ private:
     // Fixed-size vertex records with x, y, z of type T (the common float case).
     template <bool Swap, typename T>
     void vertices_same_type(const Element& el, size_t pos, size_t stride, const size_t off[3],
-                            double* out) const {
+                            Vec3* out) const {
         const unsigned char* p = data_ + pos;
-        for (uint64_t i = 0; i < el.count; ++i, p += stride, out += 3) {
+        for (uint64_t i = 0; i < el.count; ++i, p += stride, ++out) {
             const double x = static_cast<double>(load<T, Swap>(p + off[0]));
             const double y = static_cast<double>(load<T, Swap>(p + off[1]));
             const double z = static_cast<double>(load<T, Swap>(p + off[2]));
@@ -643,16 +643,14 @@ private:
                 const int bad = !std::isfinite(x) ? 0 : !std::isfinite(y) ? 1 : 2;
                 fail_nonfinite(static_cast<size_t>(p - data_) + off[bad], el, i);
             }
-            out[0] = x;
-            out[1] = y;
-            out[2] = z;
+            *out = {static_cast<Real>(x), static_cast<Real>(y), static_cast<Real>(z)};
         }
     }
 
     template <bool Swap>
     size_t binary_vertices(const Element& el, size_t pos, PlyMesh& mesh) const {
-        mesh.positions.resize(3 * static_cast<size_t>(el.count));
-        double* out = mesh.positions.data();
+        mesh.positions.resize(static_cast<size_t>(el.count));
+        Vec3* out = mesh.positions.data();
 
         if (!el.has_lists()) {
             // Fixed-size records: one bounds check, then a tight loop.
@@ -677,11 +675,11 @@ private:
                 vertices_same_type<Swap, double>(el, pos, stride, off, out);
             } else {
                 const unsigned char* p = data_ + pos;
-                for (uint64_t i = 0; i < el.count; ++i, p += stride, out += 3) {
+                for (uint64_t i = 0; i < el.count; ++i, p += stride, ++out) {
                     for (int a = 0; a < 3; ++a) {
-                        out[a] = load_real<Swap>(p + off[a], types[a]);
-                        if (!std::isfinite(out[a]))
-                            fail_nonfinite(static_cast<size_t>(p - data_) + off[a], el, i);
+                        const double v = load_real<Swap>(p + off[a], types[a]);
+                        if (!std::isfinite(v)) fail_nonfinite(static_cast<size_t>(p - data_) + off[a], el, i);
+                        (*out)[a] = static_cast<Real>(v);
                     }
                 }
             }
@@ -691,7 +689,7 @@ private:
         // General layout (lists inside vertex records): walk each record.
         const unsigned char* p = data_ + pos;
         const unsigned char* const end = data_ + size_;
-        for (uint64_t i = 0; i < el.count; ++i, out += 3) {
+        for (uint64_t i = 0; i < el.count; ++i, ++out) {
             for (const Property& pr : el.props) {
                 if (pr.is_list) {
                     const size_t cs = type_size(pr.count_type);
@@ -710,8 +708,9 @@ private:
                 if (static_cast<size_t>(end - p) < sz) fail_eof(p - data_, el, i);
                 if (pr.role != Role::Skip) {
                     const int a = static_cast<int>(pr.role) - static_cast<int>(Role::X);
-                    out[a] = load_real<Swap>(p, pr.type);
-                    if (!std::isfinite(out[a])) fail_nonfinite(p - data_, el, i);
+                    const double v = load_real<Swap>(p, pr.type);
+                    if (!std::isfinite(v)) fail_nonfinite(p - data_, el, i);
+                    (*out)[a] = static_cast<Real>(v);
                 }
                 p += sz;
             }
@@ -910,7 +909,7 @@ private:
             // its count (which check_sizes cannot bound) must not drive a loop.
             if (el.props.empty()) continue;
             const bool is_vertex = e == vertex_el_;
-            if (is_vertex) mesh.positions.resize(3 * static_cast<size_t>(el.count));
+            if (is_vertex) mesh.positions.resize(static_cast<size_t>(el.count));
             for (uint64_t i = 0; i < el.count; ++i) {
                 for (const Property& pr : el.props) {
                     if (!pr.is_list) {
@@ -921,7 +920,7 @@ private:
                             fail_line(c.line, "non-finite coordinate " + quoted(t) + " in " +
                                                   record_text(el, i));
                         const int a = static_cast<int>(pr.role) - static_cast<int>(Role::X);
-                        mesh.positions[3 * static_cast<size_t>(i) + a] = v;
+                        mesh.positions[static_cast<size_t>(i)][a] = static_cast<Real>(v);
                         continue;
                     }
                     const int64_t n = ascii_int(c, token(c, el, i), el, i);
