@@ -99,7 +99,9 @@ void add_mesh(Scene& s, MeshDesc& m, UninitVector<BuildBox>& boxes) {
     // Every allocation happens here, not on the helper thread, where running out
     // of memory would end the process instead of reaching main's error message.
     if (smooth) s.vertex_normals.resize(pos.size(), Vec3{});
+    // Returns the number of degenerate faces among them.
     auto convert = [&](size_t f0, size_t f1) {
+        size_t dropped = 0;
         for (size_t f = f0; f < f1; ++f) {
             const uint32_t a = base + idx[3 * f], b = base + idx[3 * f + 1], c = base + idx[3 * f + 2];
             Triangle& t = s.triangles[first + f];
@@ -110,27 +112,33 @@ void add_mesh(Scene& s, MeshDesc& m, UninitVector<BuildBox>& boxes) {
             Vec3 n;
             if (degenerate(pos, a, b, c, n)) {
                 t.material = kDropped;
+                ++dropped;
                 continue;
             }
             t.material = m.material;
             boxes[first + f] = triangle_box(pos, t.v);
         }
+        return dropped;
     };
+    size_t dropped = 0;
     if (faces >= kParallelFaces && std::thread::hardware_concurrency() > 1) {
-        // One thread: the normals (about an eighth of the work), then the first
-        // part of the faces; this thread: the rest. Both compute the faces'
-        // cross products (degenerate()): sharing them would make one wait.
-        const size_t split = faces * 2 / 5;
+        // One thread: the normals (about an eighth of the work) when smooth, then
+        // the first part of the faces; this thread: the rest. Both compute the
+        // faces' cross products (degenerate()): sharing them would make one wait.
+        const size_t split = smooth ? faces * 2 / 5 : faces / 2;
+        size_t helper_dropped = 0;
         std::thread helper = start_or_run([&] {
             if (smooth) accumulate_normals();
-            convert(0, split);
+            helper_dropped = convert(0, split);
         });
-        convert(split, faces);
+        dropped = convert(split, faces);
         if (helper.joinable()) helper.join();
+        dropped += helper_dropped;
     } else {
         if (smooth) accumulate_normals();
-        convert(0, faces);
+        dropped = convert(0, faces);
     }
+    if (dropped == 0) return;
     // Degenerate faces out, the order of the others kept (their ids are the
     // tie-break between equally near hits).
     size_t out = first;
