@@ -4,8 +4,10 @@
 // axes in one pass (SIMD), takes the plane of lowest surface-area cost, and
 // partitions the range in place, accumulating both sides' bounds as it goes,
 // so each split reads the primitives twice. A child that would cost more split
-// than as a leaf becomes a leaf. Large subtrees are built on their own threads;
-// nodes come from one array through an atomic counter.
+// than as a leaf becomes a leaf (a leaf's cost counted in blocks of
+// BvhBuildOptions::block primitives, as many as one leaf test takes). Large
+// subtrees are built on their own threads; nodes come from one array through an
+// atomic counter.
 #include <algorithm>
 #include <atomic>
 #include <cmath>
