@@ -64,7 +64,7 @@ public:
     const Bvh4Node* end() const { return data_.get() + size_; }
     void clear() { data_.reset(); size_ = 0; }
     // Storage for `capacity` nodes, uninitialised; then set_size(n) with n <= capacity.
-    // Large arrays ask for transparent huge pages (allocate_large).
+    // Arrays of 8 MiB or more ask for transparent huge pages (bvh_build.cpp).
     void allocate(size_t capacity);
     void set_size(size_t n) { size_ = n; }
 
@@ -87,7 +87,7 @@ inline constexpr uint32_t kLeafBlock = 1;
 // Build quality knobs (the raytracer's hidden --bvh-* options, for measurements);
 // the defaults are what every render uses.
 struct BvhBuildOptions {
-    uint32_t max_leaf = 8;      // a leaf never holds more primitives, whatever SAH says (1..64)
+    uint32_t max_leaf = 8;      // a leaf never holds more primitives, whatever SAH says (1..1024)
     float traversal_cost = 1;   // SAH cost of one traversal step, relative to one leaf block test
     uint32_t block = kLeafBlock;  // SAH counts a leaf's cost in blocks of this many primitives (1..16)
     int bins = 16;              // SAH bins per axis for large ranges (2..16; small ranges use fewer)

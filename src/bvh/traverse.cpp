@@ -202,6 +202,8 @@ inline int edges4(const RayPre& p, const Vertices4& vx, int n, Edges4& e) {
 template <bool kCull, bool kShadow, class Limit, class OnHit>
 inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint32_t end, Real tmin, const Limit& limit,
                       Real w[3], const OnHit& hit) {
+    // Two loops, one per source of vertices: one loop choosing the source per
+    // block of four was 3-10% slower (knot_4m_glass render, medians of 5 and 7).
     if (const float* leaf_vertices = s.leaf_vertices()) {
         // The leaf's vertices are one block; primitive ids are read only for hits.
         for (uint32_t i = first; i < end; i += 4) {

@@ -173,6 +173,9 @@ namespace {
 // (seen on `v = {double(float(v.x)), double(float(v.y)), double(float(v.z))}`).
 [[gnu::noinline]] bool is_float(Real x) { return Real(float(x)) == x; }
 
+// Boxes of storage that hold the leaf-order vertices of n triangles (9 floats each).
+size_t leaf_storage_boxes(size_t n) { return (n * 9 * sizeof(float) + sizeof(BuildBox) - 1) / sizeof(BuildBox); }
+
 // Scene::leaf_vertices(), when every position is a float exactly, written over
 // `boxes` once the BVH build is done with them (reserved with room for 36 bytes
 // per primitive, so the resize moves nothing); two threads copy half each.
@@ -181,7 +184,7 @@ void copy_leaf_vertices(Scene& s, UninitVector<BuildBox>& boxes) {
     for (const Vec3& p : s.positions)
         if (!is_float(p.x) || !is_float(p.y) || !is_float(p.z)) return;
     const size_t n = s.bvh.prims.size();
-    boxes.resize((n * 9 * sizeof(float) + sizeof(BuildBox) - 1) / sizeof(BuildBox));
+    boxes.resize(leaf_storage_boxes(n));
     float* const out = reinterpret_cast<float*>(boxes.data());
     auto copy = [&s, out](size_t begin, size_t end) {
         for (size_t i = begin; i < end; ++i) {
@@ -227,7 +230,7 @@ Scene build(SceneDesc& d, const BvhBuildOptions& bvh) {
     // Primitive boxes for the BVH: triangles first, in order, then spheres.
     UninitVector<BuildBox> boxes;
     // Room for the leaf-order vertices that may reuse this array (copy_leaf_vertices).
-    boxes.reserve(std::max(ntri + d.spheres.size(), (ntri * 9 * sizeof(float) + sizeof(BuildBox) - 1) / sizeof(BuildBox)));
+    boxes.reserve(std::max(ntri + d.spheres.size(), leaf_storage_boxes(ntri)));
     for (size_t i = 0; i < d.meshes.size(); ++i) {
         add_mesh(s, d.meshes[i], boxes);
         std::vector<Vec3>().swap(d.meshes[i].positions);
