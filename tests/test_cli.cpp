@@ -411,6 +411,41 @@ TEST(Cli, RoundingOption) {
     EXPECT_TRUE(images[""].rgb == images["truncate"].rgb) << "truncation should be the default";
 }
 
+TEST(Cli, AbsentBlinnPhongCoefficientsAreZero) {
+    // Spec 3: a material "can be defined with" ambient, diffuse and specular properties;
+    // each one absent renders byte for byte as "0 0 0" (a matte wall has no specular term).
+    // The sample scene's material 1 is lit by ambient light and a point light, so each
+    // coefficient shows: the image with it as given must differ from both.
+    TempDir tmp;
+    auto render = [&](const json& j, const std::string& name) {
+        write_scene(tmp.path(), name + ".json", j);
+        RunResult r = run_raytracer({"-q", "-o", tmp / "out", name + ".json"}, tmp.path());
+        EXPECT_EQ(r.exit_code, 0) << name << dump(r);
+        EXPECT_EQ(r.err, "") << name << ": an absent coefficient is no warning" << dump(r);
+        return read_text(tmp / ("out/" + name + ".png"));
+    };
+    const std::string given = render(sample_scene("given.png"), "given");
+    for (const std::string key : {"AmbientReflectance", "DiffuseReflectance", "SpecularReflectance"}) {
+        SCOPED_TRACE(key);
+        const std::string pointer = "/Scene/Materials/Material/0/" + key;
+        json absent = sample_scene("absent.png");
+        erase_at(absent, pointer);
+        json zero = sample_scene("zero.png");
+        set_at(zero, pointer, "0 0 0");
+        const std::string a = render(absent, "absent"), z = render(zero, "zero");
+        EXPECT_TRUE(a == z) << "absent differs from 0 0 0";
+        EXPECT_FALSE(a == given) << "the coefficient does not show in the test scene";
+    }
+    // All three absent at once.
+    json none = sample_scene("none.png");
+    json zeros = sample_scene("zeros.png");
+    for (const std::string key : {"AmbientReflectance", "DiffuseReflectance", "SpecularReflectance"}) {
+        erase_at(none, "/Scene/Materials/Material/0/" + key);
+        set_at(zeros, "/Scene/Materials/Material/0/" + key, "0 0 0");
+    }
+    EXPECT_TRUE(render(none, "none") == render(zeros, "zeros"));
+}
+
 // ---- Messages -------------------------------------------------------------------------
 
 TEST(Cli, OneProgressLinePerImageUnlessQuiet) {
@@ -516,6 +551,8 @@ std::vector<BadCase> bad_cases() {
         edited("material_id_zero", "/Scene/Objects/Sphere/0/Material", "0"),
         edited("negative_sphere_radius", "/Scene/Objects/Sphere/1/Radius", "-0.2"),
         edited("unknown_material_type", "/Scene/Materials/Material/1/_type", "glowing"),
+        edited("malformed_specular", "/Scene/Materials/Material/0/SpecularReflectance", "1 1"),
+        edited("null_ambient", "/Scene/Materials/Material/1/AmbientReflectance", nullptr),
         edited("missing_ply_file", "/Scene/Objects/Mesh/Faces", json{{"_plyFile", "nothere.ply"}},
                "nothere.ply"),
         edited("faces_without_data", "/Scene/Objects/Mesh/Faces", json{{"_type", "triangle"}}),

@@ -519,6 +519,51 @@ TEST(ShadingRender, NoCullingInsideGlass) {
     EXPECT_EQ(px(render_json(slab_scene("1", "0 0 0", "0.1 0.5 1"), no_cull()), 0, 0), (Pixel{163, 73, 27}));
 }
 
+// A mirror inside glass: the camera ray enters a glass face at z = -4 (normal +z, index
+// 1.5, absorption `absorption`) and meets a mirror at z = -6 facing it; the mirror sends
+// the ray straight back to the glass face, which it now meets from behind. Behind the
+// camera, a wall at z = +5 facing it, of colour W = (0.995, 0.505, 0.255) * 100.
+// MaxRecursionDepth 3: camera ray 0, refracted 1, mirror reflection 2, what the glass
+// spawns from it 3 (a depth-3 ray meeting the mirror again reflects nothing).
+std::string mirror_in_glass_scene(const std::string& absorption) {
+    return camera() + R"(, "ShadowRayEpsilon": "1e-6", "MaxRecursionDepth": "3",
+        "Lights": {"AmbientLight": "100 100 100"},
+        "Materials": {"Material": [
+            {"_id": "1", "AmbientReflectance": "0.995 0.505 0.255", "DiffuseReflectance": "0 0 0", "SpecularReflectance": "0 0 0"},
+            {"_id": "2", "_type": "dielectric", "AmbientReflectance": "0 0 0", "DiffuseReflectance": "0 0 0",
+             "SpecularReflectance": "0 0 0", "MirrorReflectance": "1 1 1", "RefractionIndex": "1.5",
+             "AbsorptionCoefficient": ")" + absorption + R"("},
+            {"_id": "3", "_type": "mirror", "AmbientReflectance": "0 0 0", "DiffuseReflectance": "0 0 0",
+             "SpecularReflectance": "0 0 0", "MirrorReflectance": "1 1 1"}]},
+        "VertexData": {"_data": "0 0 5  -2 -3 -4 3 -3 -4 3 2 -4 -2 2 -4  -2 -3 -6 3 -3 -6 3 2 -6 -2 2 -6"},
+        "Objects": {"Plane": {"_id": "1", "Material": "1", "Point": "1", "Normal": "0 0 -1"},
+            "Mesh": [{"_id": "1", "Material": "2", "Faces": {"_data": "2 3 4 2 4 5"}},
+                     {"_id": "2", "Material": "3", "Faces": {"_data": "6 7 8 6 8 9"}}]})";
+}
+
+TEST(ShadingRender, MirrorReflectionInsideGlassIsCulled) {
+    // Which rays count as inside a dielectric is decided by the interface that spawned them
+    // (docs/conventions.md): the mirror's reflection is not inside, so with culling it passes
+    // the glass face it meets from behind and sees the wall undimmed. With F = 0.04 at normal
+    // incidence: 0.04 W (front reflection) + 0.96 W = W = (99.5, 50.5, 25.5) -> (99, 50, 25).
+    EXPECT_EQ(px(render_json(mirror_in_glass_scene("0 0 0")), 0, 0), (Pixel{99, 50, 25}));
+    // Without culling it leaves through the glass (0.96; the depth-3 internal reflection meets
+    // the mirror and adds nothing): 0.04 W + 0.96^2 W = (95.68, 48.56, 24.52) -> (95, 48, 24).
+    // Tracking the medium across the mirror bounce (a ray inside glass stays inside) would give
+    // this with culling on too.
+    EXPECT_EQ(px(render_json(mirror_in_glass_scene("0 0 0"), no_cull()), 0, 0), (Pixel{95, 48, 24}));
+}
+
+TEST(ShadingRender, BeerLawOnlyAfterADielectricInterface) {
+    // c = (0.1, 0.5, 1). Beer's law dims the segment the glass face refracted inside (to the
+    // mirror, 2 - 1e-6 long) but not the mirror's reflection, which no dielectric interface
+    // spawned. Culling on: 0.04 W + 0.96 e^-2c W = (82.19, 19.85, 4.33) -> (82, 19, 4).
+    EXPECT_EQ(px(render_json(mirror_in_glass_scene("0.1 0.5 1")), 0, 0), (Pixel{82, 19, 4}));
+    // Culling off, leaving through the glass: 0.04 W + 0.96^2 e^-2c W = (79.06, 19.14, 4.20)
+    // -> (79, 19, 4). Dimming the mirror's reflection as well would give (65.45, 8.32, 1.45).
+    EXPECT_EQ(px(render_json(mirror_in_glass_scene("0.1 0.5 1"), no_cull()), 0, 0), (Pixel{79, 19, 4}));
+}
+
 TEST(ShadingRender, RefractionBendsTowardsTheNormal) {
     // The camera looks along (1,0,-1)/sqrt2 and enters glass (index 1.5) through the face z = -4
     // at (4, 0, -4). Snell: sin t = sin 45 / 1.5 = 0.47140, tan t = 0.53452, so after 2 more units

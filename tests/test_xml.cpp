@@ -270,6 +270,32 @@ TEST(XmlLoader, ExtraNearPlaneNumbersAreAWarning) {
 
 // ---- Image names: .png, .ppm, nothing else ----------------------------------------
 
+TEST(XmlLoader, AbsentBlinnPhongCoefficientsAreZero) {
+    // The XML reader follows the JSON rule: a material without SpecularReflectance
+    // renders byte for byte as one with 0 0 0; a malformed one is still an error.
+    const std::string full = xml_scene(kTriangle, "out.png");
+    const std::string tag = "<SpecularReflectance>1 1 1</SpecularReflectance>";
+    ASSERT_NE(full.find(tag), std::string::npos);
+    auto with = [&](const std::string& replacement) {
+        std::string s = full;
+        return s.replace(s.find(tag), tag.size(), replacement);
+    };
+    TempDir tmp;
+    auto render = [&](const std::string& text) {
+        write_text(tmp / "s.xml", text);
+        const RunResult r = run_raytracer({"-q", "s.xml"}, tmp.path());
+        EXPECT_EQ(r.exit_code, 0) << r.err;
+        return read_text(tmp / "out.png");
+    };
+    const std::string absent = render(with(""));
+    EXPECT_TRUE(absent == render(with("<SpecularReflectance>0 0 0</SpecularReflectance>")));
+    EXPECT_FALSE(absent == render(full)) << "the specular term does not show in the test scene";
+    write_text(tmp / "bad.xml", with("<SpecularReflectance>1 1</SpecularReflectance>"));
+    const RunResult bad = run_raytracer({"-q", "bad.xml"}, tmp.path());
+    EXPECT_EQ(bad.exit_code, 1);
+    EXPECT_NE(bad.err.find("bad.xml: /Scene/Materials/Material/SpecularReflectance: "), std::string::npos) << bad.err;
+}
+
 TEST(ImageOutput, PpmHoldsTheSamePixelsAsPng) {
     TempDir tmp;
     write_text(tmp / "s.xml", xml_scene(kTriangle, "out.ppm"));

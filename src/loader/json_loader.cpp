@@ -296,9 +296,11 @@ private:
                 else if (ty == "dielectric") d.type = MaterialType::Dielectric;
                 else fail(mp + "/_type", "unknown material type '" + ty + "' (expected mirror, conductor or dielectric)");
             }
-            d.ambient = color(require(m, mp, "AmbientReflectance"), mp + "/AmbientReflectance");
-            d.diffuse = color(require(m, mp, "DiffuseReflectance"), mp + "/DiffuseReflectance");
-            d.specular = color(require(m, mp, "SpecularReflectance"), mp + "/SpecularReflectance");
+            // Each Blinn-Phong coefficient is 0 0 0 when absent (spec 3: a material "can be
+            // defined with" them; a matte wall needs no specular term).
+            if (const json* v = find(m, "AmbientReflectance")) d.ambient = color(*v, mp + "/AmbientReflectance");
+            if (const json* v = find(m, "DiffuseReflectance")) d.diffuse = color(*v, mp + "/DiffuseReflectance");
+            if (const json* v = find(m, "SpecularReflectance")) d.specular = color(*v, mp + "/SpecularReflectance");
             if (const json* v = find(m, "PhongExponent")) d.phong_exponent = non_negative(*v, mp + "/PhongExponent");
             // Mirrors and conductors need MirrorReflectance; dielectrics default to 1 1 1
             // (the course's 2021 cornellbox_recursive glass has none).

@@ -70,12 +70,17 @@ struct Integrator {
         return c;
     }
 
-    // `medium` is the dielectric material the ray travels inside, or kNoMedium;
+    // `medium` is the dielectric material the ray travels inside, or kNoMedium. It is
+    // decided by the interface that spawned the ray alone, as the references do
+    // (docs/conventions.md, "Inside a dielectric"): a ray refracted into a dielectric
+    // or reflected off the inside of its surface is inside it; every other ray,
+    // including a mirror's or conductor's reflection met inside the glass, is not.
     // `weight` is what this ray's radiance is multiplied by in the pixel.
     Vec3 trace(const Ray& ray, int depth, int medium, bool primary, Real weight) const {
         Hit h;
-        // Culling applies to camera and reflection rays outside any medium,
-        // never inside a dielectric (reference-conventions.md, "Back-face culling").
+        // Culling applies to every ray but those inside a dielectric, and shadow rays
+        // (reference-conventions.md, "Back-face culling"; docs/conventions.md for
+        // which rays count as inside).
         const bool cull = opt.cull && medium == kNoMedium;
         if (!closest_hit(s, ray, 0, HUGE_VAL, cull, h))
             return primary ? s.background : Vec3{};  // spec 3, BackgroundColor
@@ -118,7 +123,7 @@ struct Integrator {
         // Dielectrics are shaded only when hit from outside (reference-conventions.md).
         if (m.type != MaterialType::Dielectric || front) color = local(m, p, ns, -ray.dir);
 
-        // Beer's law on every segment travelled inside a dielectric, internally
+        // Beer's law on the segment a dielectric's interface sent inside it, internally
         // reflected ones included (reference-conventions.md, "Materials").
         const Vec3 beer = medium != kNoMedium
                               ? beer_attenuation(s.materials[medium].absorption_coefficient, h.t)
@@ -135,18 +140,18 @@ struct Integrator {
                 color += factor * trace(r, depth + 1, r_medium, false, w);
             };
             if (m.type == MaterialType::Mirror) {
-                secondary(m.mirror, spawn_ray(p, nf, eps, refl_dir), medium, rays.reflection);
+                secondary(m.mirror, spawn_ray(p, nf, eps, refl_dir), kNoMedium, rays.reflection);
             } else if (m.type == MaterialType::Conductor) {
                 const Real fr = fresnel_conductor(cos_i, m.refraction_index, m.absorption_index);
-                secondary(m.mirror * fr, spawn_ray(p, nf, eps, refl_dir), medium, rays.reflection);
+                secondary(m.mirror * fr, spawn_ray(p, nf, eps, refl_dir), kNoMedium, rays.reflection);
             } else {
                 const int self = static_cast<int>(mat_id);
                 const Real eta_i = front ? Real(1) : m.refraction_index;
                 const Real eta_t = front ? m.refraction_index : Real(1);
                 Real cos_t = 0;
                 const Real fr = fresnel_dielectric(cos_i, eta_i, eta_t, &cos_t);
-                // The reflected ray stays on the incoming side; the refracted one crosses.
-                const int refl_medium = front ? medium : self;
+                // Inside this dielectric: the ray reflected off its inside, or refracted in.
+                const int refl_medium = front ? kNoMedium : self;
                 const int refr_medium = front ? self : kNoMedium;
                 secondary(m.mirror * fr, spawn_ray(p, nf, eps, refl_dir), refl_medium, rays.reflection);
                 if (fr < 1) {
