@@ -14,14 +14,14 @@ ifeq ($(origin RT_HAVE_TINYOBJ),undefined)
   RT_HAVE_TINYOBJ := $(shell printf '\043include <tiny_obj_loader.h>\n' | $(CXX) -x c++ -E -o /dev/null - 2>/dev/null && echo 1)
 endif
 ifeq ($(RT_HAVE_PUGIXML),1)
-  LDLIBS += -lpugixml
+  override LDLIBS += -lpugixml
 else
-  CPPFLAGS += -DRT_NO_XML
+  override CPPFLAGS += -DRT_NO_XML
 endif
 ifeq ($(RT_HAVE_TINYOBJ),1)
-  LDLIBS += -ltinyobjloader_double
+  override LDLIBS += -ltinyobjloader_double
 else
-  CPPFLAGS += -DRT_NO_OBJ
+  override CPPFLAGS += -DRT_NO_OBJ
 endif
 
 .PHONY: clean-rtconvert
@@ -32,8 +32,8 @@ test: rtconvert
 endif
 clean: clean-rtconvert
 
-rtconvert: $(BUILD)/src/convert/convert_main.o $(BUILD)/librt.a build/precision
-	$(CXX) $(CXXFLAGS) -o $@ $(filter-out build/precision,$^) $(LDLIBS)
+rtconvert: $(BUILD)/src/convert/convert_main.o $(BUILD)/librt.a build/precision $(BUILD)/config
+	$(CXX) $(CXXFLAGS) -o $@ $(filter-out build/precision $(BUILD)/config,$^) $(LDLIBS)
 
 clean-rtconvert:
 	rm -f rtconvert
