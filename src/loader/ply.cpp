@@ -1,7 +1,8 @@
 // Our own PLY reader; the contract is in rt/ply.h.
 //
 // Strategy:
-//   1. The whole file is read into one buffer (a single read() for regular files).
+//   1. The whole file is in memory: regular files of 1 MiB or more are mapped
+//      read-only, smaller ones and pipes are read into one buffer (FileBytes).
 //   2. The header is parsed into elements and properties; the vertex x/y/z and the
 //      face index list are located by name, everything else is marked "skip".
 //   3. Before anything is allocated, every element count is checked against the
@@ -241,7 +242,7 @@ inline int64_t load_int(const unsigned char* p, Type t) {
 // (no copy; MAP_POPULATE maps the cached pages up front), else one heap buffer
 // filled by read(). Caveat of the mapping: if another process truncates the file
 // while we parse it, the access past the new end raises SIGBUS; scene inputs are
-// not rewritten while being rendered, and the speed gain is large (see report).
+// not rewritten while being rendered, and mapping saves copying every byte.
 
 class FileBytes {
 public:
@@ -612,6 +613,34 @@ private:
 
     // -- binary body ---------------------------------------------------------------
 
+    // The count of the list property `pr` whose record starts at p (el's record rec):
+    // checked to fit before the end of the file and not to be negative.
+    template <bool Swap>
+    int64_t list_count(const Property& pr, const Element& el, uint64_t rec, const unsigned char* p) const {
+        if (static_cast<size_t>(data_ + size_ - p) < type_size(pr.count_type)) fail_eof(p - data_, el, rec);
+        const int64_t n = load_int<Swap>(p, pr.count_type);
+        if (n < 0) fail_byte(p - data_, "negative list count " + std::to_string(n) + " in " + record_text(el, rec));
+        return n;
+    }
+
+    // Steps over one property we do not use (a scalar or a whole list) at p; returns
+    // the end of it. Fails if the file ends first.
+    template <bool Swap>
+    const unsigned char* skip_property(const Property& pr, const Element& el, uint64_t rec,
+                                       const unsigned char* p) const {
+        const unsigned char* const end = data_ + size_;
+        if (!pr.is_list) {
+            const size_t sz = type_size(pr.type);
+            if (static_cast<size_t>(end - p) < sz) fail_eof(p - data_, el, rec);
+            return p + sz;
+        }
+        const int64_t n = list_count<Swap>(pr, el, rec, p);
+        p += type_size(pr.count_type);
+        const uint64_t bytes = static_cast<uint64_t>(n) * type_size(pr.type);  // n < 2^32, no overflow
+        if (static_cast<uint64_t>(end - p) < bytes) fail_eof(p - data_, el, rec);
+        return p + bytes;
+    }
+
     template <bool Swap>
     void read_binary(PlyMesh& mesh, TriangleSink& tris) {
         size_t pos = body_offset_;
@@ -692,16 +721,7 @@ private:
         for (uint64_t i = 0; i < el.count; ++i, ++out) {
             for (const Property& pr : el.props) {
                 if (pr.is_list) {
-                    const size_t cs = type_size(pr.count_type);
-                    if (static_cast<size_t>(end - p) < cs) fail_eof(p - data_, el, i);
-                    const int64_t n = load_int<Swap>(p, pr.count_type);
-                    if (n < 0)
-                        fail_byte(p - data_, "negative list count " + std::to_string(n) + " in " +
-                                                 record_text(el, i));
-                    p += cs;
-                    const uint64_t bytes = static_cast<uint64_t>(n) * type_size(pr.type);
-                    if (static_cast<uint64_t>(end - p) < bytes) fail_eof(p - data_, el, i);
-                    p += bytes;
+                    p = skip_property<Swap>(pr, el, i, p);
                     continue;
                 }
                 const size_t sz = type_size(pr.type);
@@ -725,30 +745,19 @@ private:
                                             PlyMesh& mesh, TriangleSink& tris) const {
         const unsigned char* const end = data_ + size_;
         for (const Property& pr : el.props) {
-            if (!pr.is_list) {
-                const size_t sz = type_size(pr.type);
-                if (static_cast<size_t>(end - p) < sz) fail_eof(p - data_, el, rec);
-                p += sz;
+            if (pr.role != Role::Indices) {
+                p = skip_property<Swap>(pr, el, rec, p);
                 continue;
             }
-            const size_t cs = type_size(pr.count_type);
-            if (static_cast<size_t>(end - p) < cs) fail_eof(p - data_, el, rec);
-            const int64_t n = load_int<Swap>(p, pr.count_type);
-            if (n < 0)
-                fail_byte(p - data_, "negative list count " + std::to_string(n) + " in " +
-                                         record_text(el, rec));
-            if (pr.role == Role::Indices && n < 3)
+            const int64_t n = list_count<Swap>(pr, el, rec, p);
+            if (n < 3)
                 fail_byte(p - data_, "face with " + std::to_string(n) +
                                          " vertices (at least 3 needed) in " +
                                          record_text(el, rec));
-            p += cs;
+            p += type_size(pr.count_type);
             const size_t isz = type_size(pr.type);
             const uint64_t bytes = static_cast<uint64_t>(n) * isz;  // n < 2^32, no overflow
             if (static_cast<uint64_t>(end - p) < bytes) fail_eof(p - data_, el, rec);
-            if (pr.role != Role::Indices) {
-                p += bytes;
-                continue;
-            }
             uint32_t first = 0, prev = 0;
             for (int64_t k = 0; k < n; ++k, p += isz) {
                 const int64_t v = load_int<Swap>(p, pr.type);
@@ -826,27 +835,8 @@ private:
             return pos + static_cast<size_t>(need);
         }
         const unsigned char* p = data_ + pos;
-        const unsigned char* const end = data_ + size_;
-        for (uint64_t i = 0; i < el.count; ++i) {
-            for (const Property& pr : el.props) {
-                if (!pr.is_list) {
-                    const size_t sz = type_size(pr.type);
-                    if (static_cast<size_t>(end - p) < sz) fail_eof(p - data_, el, i);
-                    p += sz;
-                    continue;
-                }
-                const size_t cs = type_size(pr.count_type);
-                if (static_cast<size_t>(end - p) < cs) fail_eof(p - data_, el, i);
-                const int64_t n = load_int<Swap>(p, pr.count_type);
-                if (n < 0)
-                    fail_byte(p - data_, "negative list count " + std::to_string(n) + " in " +
-                                             record_text(el, i));
-                p += cs;
-                const uint64_t bytes = static_cast<uint64_t>(n) * type_size(pr.type);
-                if (static_cast<uint64_t>(end - p) < bytes) fail_eof(p - data_, el, i);
-                p += bytes;
-            }
-        }
+        for (uint64_t i = 0; i < el.count; ++i)
+            for (const Property& pr : el.props) p = skip_property<Swap>(pr, el, i, p);
         return static_cast<size_t>(p - data_);
     }
 
