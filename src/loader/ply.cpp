@@ -206,24 +206,10 @@ inline T load(const unsigned char* p) {
     return v;
 }
 
-template <bool Swap>
-inline double load_real(const unsigned char* p, Type t) {
-    switch (t) {
-        case Type::I8: return load<int8_t, Swap>(p);
-        case Type::U8: return load<uint8_t, Swap>(p);
-        case Type::I16: return load<int16_t, Swap>(p);
-        case Type::U16: return load<uint16_t, Swap>(p);
-        case Type::I32: return load<int32_t, Swap>(p);
-        case Type::U32: return load<uint32_t, Swap>(p);
-        case Type::F32: return load<float, Swap>(p);
-        case Type::F64: return load<double, Swap>(p);
-    }
-    return 0.0;
-}
-
-// Integer types only (list counts and indices; checked when the header is read).
-template <bool Swap>
-inline int64_t load_int(const unsigned char* p, Type t) {
+// The value of type t at p as R: double for coordinates (any type), int64_t for list
+// counts and indices (integer types only, checked when the header is read).
+template <class R, bool Swap>
+inline R load_as(const unsigned char* p, Type t) {
     switch (t) {
         case Type::I8: return load<int8_t, Swap>(p);
         case Type::U8: return load<uint8_t, Swap>(p);
@@ -232,9 +218,23 @@ inline int64_t load_int(const unsigned char* p, Type t) {
         case Type::I32: return load<int32_t, Swap>(p);
         case Type::U32: return load<uint32_t, Swap>(p);
         case Type::F32:
-        case Type::F64: break;
+            if constexpr (std::is_floating_point_v<R>) return load<float, Swap>(p);
+            break;
+        case Type::F64:
+            if constexpr (std::is_floating_point_v<R>) return load<double, Swap>(p);
+            break;
     }
-    return 0;
+    return R(0);
+}
+
+template <bool Swap>
+inline double load_real(const unsigned char* p, Type t) {
+    return load_as<double, Swap>(p, t);
+}
+
+template <bool Swap>
+inline int64_t load_int(const unsigned char* p, Type t) {
+    return load_as<int64_t, Swap>(p, t);
 }
 
 // ---------------------------------------------------------------------------------
@@ -355,6 +355,20 @@ private:
     std::vector<uint32_t>& v_;
     uint32_t* cur_;
     uint32_t* end_;
+};
+
+// Fan-splits one polygon as its vertex indices arrive: vertex k >= 2 makes the
+// triangle (first, previous, k).
+struct Fan {
+    uint32_t first = 0, prev = 0;
+    void add(int64_t k, uint32_t u, TriangleSink& tris) {
+        if (k == 0) {
+            first = u;
+        } else if (k >= 2) {
+            tris.put(first, prev, u);
+        }
+        prev = u;
+    }
 };
 
 // ---------------------------------------------------------------------------------
@@ -758,19 +772,13 @@ private:
             const size_t isz = type_size(pr.type);
             const uint64_t bytes = static_cast<uint64_t>(n) * isz;  // n < 2^32, no overflow
             if (static_cast<uint64_t>(end - p) < bytes) fail_eof(p - data_, el, rec);
-            uint32_t first = 0, prev = 0;
+            Fan fan;
             for (int64_t k = 0; k < n; ++k, p += isz) {
                 const int64_t v = load_int<Swap>(p, pr.type);
                 if (static_cast<uint64_t>(v) >= vertex_count_)  // negative -> huge
                     fail_byte(p - data_,
                               bad_index_text(v, vertex_count_) + " in " + record_text(el, rec));
-                const uint32_t u = static_cast<uint32_t>(v);
-                if (k == 0) {
-                    first = u;
-                } else if (k >= 2) {
-                    tris.put(first, prev, u);
-                }
-                prev = u;
+                fan.add(k, static_cast<uint32_t>(v), tris);
             }
             if (n > 3) ++mesh.polygons_split;
         }
@@ -926,19 +934,13 @@ private:
                         fail_line(c.line, "face with " + std::to_string(n) +
                                               " vertices (at least 3 needed) in " +
                                               record_text(el, i));
-                    uint32_t first = 0, prev = 0;
+                    Fan fan;
                     for (int64_t k = 0; k < n; ++k) {
                         const int64_t v = ascii_int(c, token(c, el, i), el, i);
                         if (static_cast<uint64_t>(v) >= vertex_count_)
                             fail_line(c.line, bad_index_text(v, vertex_count_) + " in " +
                                                   record_text(el, i));
-                        const uint32_t u = static_cast<uint32_t>(v);
-                        if (k == 0) {
-                            first = u;
-                        } else if (k >= 2) {
-                            tris.put(first, prev, u);
-                        }
-                        prev = u;
+                        fan.add(k, static_cast<uint32_t>(v), tris);
                     }
                     if (n > 3) ++mesh.polygons_split;
                 }
