@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cli/run_stats.h"
+#include "rt/atomic_file.h"
 #include "rt/error.h"
 #include "rt/loader.h"
 #include "rt/render.h"

@@ -667,7 +667,7 @@ TEST(ConvertCli, BadInputIsOneLineAndWritesNothing) {
     for (const Case& c : std::vector<Case>{
              {{"broken.xml", "out.json"}, "broken.xml: line 3, column 3: start-end tags mismatch"},
              {{"broken.json", "out.xml"}, "broken.json: parse error at line 1, column 15: "},
-             {{"huge.json", "out.xml"}, "huge.json: number overflow parsing '1e999'"},
+             {{"huge.json", "out.xml"}, "huge.json: line 1, column 11: number overflow parsing '1e999' (not a finite number)"},
              {{"bad.obj", "out.json"}, "bad.obj: line 2: vertex index out of range in 'f 1 2 3' (the file has 1 vertices)"},
              {{"missing.xml", "out.json"}, "missing.xml: cannot open: No such file or directory"},
              {{"ok.json", "out.txt"}, "out.txt: unknown output format (the name must end in .json, .xml or .obj)"},
@@ -682,6 +682,22 @@ TEST(ConvertCli, BadInputIsOneLineAndWritesNothing) {
         EXPECT_EQ(lines[0].substr(0, c.error.size()), c.error);
         EXPECT_EQ(list_files(tmp.path()), (std::vector<std::string>{"bad.obj", "broken.json", "broken.xml", "huge.json", "ok.json"}));
     }
+}
+
+// One function formats JSON parse errors for both programs (rt/scene_tree.h): a number
+// beyond the double range gets the same one-line message, with its line and column,
+// from the renderer and from the converter.
+TEST(ConvertCli, NumberOverflowIsTheSameMessageInBothPrograms) {
+    TempDir tmp;
+    write_text(tmp / "huge.json", "{\"Scene\": {\n  \"ShadowRayEpsilon\": 1e999}}\n");
+    const std::string expected = "huge.json: line 2, column 23: number overflow parsing '1e999' (not a finite number)";
+    const RunResult render = run_program(raytracer_path(), {"huge.json"}, tmp.path());
+    const RunResult convert = run_program(rtconvert_path(), {"huge.json", "out.xml"}, tmp.path());
+    for (const RunResult* r : {&render, &convert}) {
+        EXPECT_EQ(r->exit_code, 1);
+        EXPECT_EQ(split_lines(r->err), std::vector<std::string>{expected}) << r->err;
+    }
+    EXPECT_EQ(list_files(tmp.path()), std::vector<std::string>{"huge.json"});
 }
 
 // ---- Our own scenes ---------------------------------------------------------------------

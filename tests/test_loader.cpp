@@ -1,4 +1,4 @@
-// Tests for the JSON scene loader (include/rt/loader.h, src/loader/json_loader.cpp):
+// Tests for the JSON scene loader (include/rt/loader.h, src/loader/):
 // parse_scene on JSON held in memory. Valid input: the spec's sample scene, defaults,
 // single-object and array forms, lookAt cameras, inline meshes, warnings, numbers given
 // as JSON numbers. Bad input: every class must throw rt::InputError whose one-line

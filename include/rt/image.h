@@ -20,8 +20,8 @@ struct Image {
 // Clamps each channel to [0, 255] and quantises it; NaN becomes 0.
 uint8_t quantize(Real value, Rounding rounding);
 
-// Writes a PNG atomically: to a temporary name beside `path`, then renamed over it,
-// so a failure never leaves a half-written image. Throws rt::InputError naming `path`.
+// Writes a PNG atomically (write_file_atomic, rt/atomic_file.h): to a temporary name
+// beside `path`, then renamed over it, so a failure never leaves a half-written image. Throws rt::InputError naming `path`.
 void write_png(const Image& image, const std::string& path);
 
 // Binary PPM (P6, maxval 255), written atomically like write_png.
@@ -36,9 +36,5 @@ ImageFormat image_format_of(const std::string& path);
 // write_png or write_ppm as the name's extension asks; throws rt::InputError
 // naming `path` for any other extension.
 void write_image(const Image& image, const std::string& path);
-
-// Writes `bytes` to a temporary name beside `path` and renames it over `path`.
-// Throws rt::InputError "<path>: cannot write: <reason>"; nothing is left behind on failure.
-void write_file_atomic(const std::string& path, const std::string& bytes);
 
 }  // namespace rt

@@ -1,21 +1,18 @@
 // rtconvert's library side: which conversion a pair of file names asks for, and the
-// files each one writes. The conversions themselves live in src/loader (XML <-> JSON
-// trees, OBJ import) and obj_export.cpp / ply_writer.cpp.
-#include <cctype>
-#include <cerrno>
-#include <cstdio>
-#include <cstring>
+// files each one writes. The conversions themselves: the scene readers of src/loader
+// (XML or JSON -> tree, rt/scene_tree.h), xml_writer.cpp (tree -> XML),
+// obj_import.cpp, obj_export.cpp and ply_writer.cpp.
 #include <filesystem>
 #include <string>
 
-#include "../loader/json_scene.h"
-#include "../loader/obj_import.h"
-#include "../loader/text_file.h"
-#include "../loader/xml_json.h"
+#include "obj_import.h"
+#include "rt/atomic_file.h"
 #include "rt/convert.h"
 #include "rt/error.h"
-#include "rt/image.h"
+#include "rt/files.h"
 #include "rt/loader.h"
+#include "rt/scene_tree.h"
+#include "xml_writer.h"
 
 namespace fs = std::filesystem;
 
@@ -23,16 +20,6 @@ namespace rt {
 namespace {
 
 using ojson = nlohmann::ordered_json;
-
-std::string lower_extension(const std::string& path) {
-    const std::string name = fs::path(path).filename().string();
-    const size_t dot = name.find_last_of('.');
-    if (dot == std::string::npos) return "";
-    std::string ext = name.substr(dot);
-    for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    return ext;
-}
-
 
 // The folder a file is in, absolute and normalised.
 fs::path folder_of(const std::string& path) {
@@ -86,7 +73,7 @@ std::string xml_to_json_text(const std::string& xml_text, const std::string& pat
 }
 
 std::string json_to_xml_text(const std::string& json_text, const std::string& path) {
-    return json_tree_to_xml(parse_json_tree(json_text, path), path);
+    return json_tree_to_xml(parse_json_tree<ojson>(json_text, path), path);
 }
 
 ConvertResult convert_file(const std::string& input, const std::string& output, const ConvertOptions& options) {
@@ -140,7 +127,7 @@ ConvertResult convert_file(const std::string& input, const std::string& output, 
 
     // JSON / XML -> JSON / XML: the tree, with PLY paths following the output.
     const std::string text = read_text_file(input);
-    ojson tree = from == SceneFormat::Xml ? xml_to_json_tree(text, input) : parse_json_tree(text, input);
+    ojson tree = from == SceneFormat::Xml ? xml_to_json_tree(text, input) : parse_json_tree<ojson>(text, input);
     const fs::path in_dir = folder_of(input);
     if (in_dir != out_dir) rewrite_ply_paths(tree, in_dir, out_dir);
     const std::string out_text = tree_text(tree, to, input);

@@ -2,9 +2,9 @@
 #include <cstring>
 #include <string>
 
+#include "rt/atomic_file.h"
 #include "rt/convert.h"
 #include "rt/error.h"
-#include "rt/image.h"
 
 namespace rt {
 namespace {

@@ -1,7 +1,8 @@
 // Our own PLY reader; the contract is in rt/ply.h.
 //
 // Strategy:
-//   1. The whole file is read into one buffer (a single read() for regular files).
+//   1. The whole file is in memory: regular files of 1 MiB or more are mapped
+//      read-only, smaller ones and pipes are read into one buffer (FileBytes).
 //   2. The header is parsed into elements and properties; the vertex x/y/z and the
 //      face index list are located by name, everything else is marked "skip".
 //   3. Before anything is allocated, every element count is checked against the
@@ -205,24 +206,10 @@ inline T load(const unsigned char* p) {
     return v;
 }
 
-template <bool Swap>
-inline double load_real(const unsigned char* p, Type t) {
-    switch (t) {
-        case Type::I8: return load<int8_t, Swap>(p);
-        case Type::U8: return load<uint8_t, Swap>(p);
-        case Type::I16: return load<int16_t, Swap>(p);
-        case Type::U16: return load<uint16_t, Swap>(p);
-        case Type::I32: return load<int32_t, Swap>(p);
-        case Type::U32: return load<uint32_t, Swap>(p);
-        case Type::F32: return load<float, Swap>(p);
-        case Type::F64: return load<double, Swap>(p);
-    }
-    return 0.0;
-}
-
-// Integer types only (list counts and indices; checked when the header is read).
-template <bool Swap>
-inline int64_t load_int(const unsigned char* p, Type t) {
+// The value of type t at p as R: double for coordinates (any type), int64_t for list
+// counts and indices (integer types only, checked when the header is read).
+template <class R, bool Swap>
+inline R load_as(const unsigned char* p, Type t) {
     switch (t) {
         case Type::I8: return load<int8_t, Swap>(p);
         case Type::U8: return load<uint8_t, Swap>(p);
@@ -231,9 +218,23 @@ inline int64_t load_int(const unsigned char* p, Type t) {
         case Type::I32: return load<int32_t, Swap>(p);
         case Type::U32: return load<uint32_t, Swap>(p);
         case Type::F32:
-        case Type::F64: break;
+            if constexpr (std::is_floating_point_v<R>) return load<float, Swap>(p);
+            break;
+        case Type::F64:
+            if constexpr (std::is_floating_point_v<R>) return load<double, Swap>(p);
+            break;
     }
-    return 0;
+    return R(0);
+}
+
+template <bool Swap>
+inline double load_real(const unsigned char* p, Type t) {
+    return load_as<double, Swap>(p, t);
+}
+
+template <bool Swap>
+inline int64_t load_int(const unsigned char* p, Type t) {
+    return load_as<int64_t, Swap>(p, t);
 }
 
 // ---------------------------------------------------------------------------------
@@ -241,7 +242,7 @@ inline int64_t load_int(const unsigned char* p, Type t) {
 // (no copy; MAP_POPULATE maps the cached pages up front), else one heap buffer
 // filled by read(). Caveat of the mapping: if another process truncates the file
 // while we parse it, the access past the new end raises SIGBUS; scene inputs are
-// not rewritten while being rendered, and the speed gain is large (see report).
+// not rewritten while being rendered, and mapping saves copying every byte.
 
 class FileBytes {
 public:
@@ -354,6 +355,20 @@ private:
     std::vector<uint32_t>& v_;
     uint32_t* cur_;
     uint32_t* end_;
+};
+
+// Fan-splits one polygon as its vertex indices arrive: vertex k >= 2 makes the
+// triangle (first, previous, k).
+struct Fan {
+    uint32_t first = 0, prev = 0;
+    void add(int64_t k, uint32_t u, TriangleSink& tris) {
+        if (k == 0) {
+            first = u;
+        } else if (k >= 2) {
+            tris.put(first, prev, u);
+        }
+        prev = u;
+    }
 };
 
 // ---------------------------------------------------------------------------------
@@ -612,6 +627,34 @@ private:
 
     // -- binary body ---------------------------------------------------------------
 
+    // The count of the list property `pr` whose record starts at p (el's record rec):
+    // checked to fit before the end of the file and not to be negative.
+    template <bool Swap>
+    int64_t list_count(const Property& pr, const Element& el, uint64_t rec, const unsigned char* p) const {
+        if (static_cast<size_t>(data_ + size_ - p) < type_size(pr.count_type)) fail_eof(p - data_, el, rec);
+        const int64_t n = load_int<Swap>(p, pr.count_type);
+        if (n < 0) fail_byte(p - data_, "negative list count " + std::to_string(n) + " in " + record_text(el, rec));
+        return n;
+    }
+
+    // Steps over one property we do not use (a scalar or a whole list) at p; returns
+    // the end of it. Fails if the file ends first.
+    template <bool Swap>
+    const unsigned char* skip_property(const Property& pr, const Element& el, uint64_t rec,
+                                       const unsigned char* p) const {
+        const unsigned char* const end = data_ + size_;
+        if (!pr.is_list) {
+            const size_t sz = type_size(pr.type);
+            if (static_cast<size_t>(end - p) < sz) fail_eof(p - data_, el, rec);
+            return p + sz;
+        }
+        const int64_t n = list_count<Swap>(pr, el, rec, p);
+        p += type_size(pr.count_type);
+        const uint64_t bytes = static_cast<uint64_t>(n) * type_size(pr.type);  // n < 2^32, no overflow
+        if (static_cast<uint64_t>(end - p) < bytes) fail_eof(p - data_, el, rec);
+        return p + bytes;
+    }
+
     template <bool Swap>
     void read_binary(PlyMesh& mesh, TriangleSink& tris) {
         size_t pos = body_offset_;
@@ -692,16 +735,7 @@ private:
         for (uint64_t i = 0; i < el.count; ++i, ++out) {
             for (const Property& pr : el.props) {
                 if (pr.is_list) {
-                    const size_t cs = type_size(pr.count_type);
-                    if (static_cast<size_t>(end - p) < cs) fail_eof(p - data_, el, i);
-                    const int64_t n = load_int<Swap>(p, pr.count_type);
-                    if (n < 0)
-                        fail_byte(p - data_, "negative list count " + std::to_string(n) + " in " +
-                                                 record_text(el, i));
-                    p += cs;
-                    const uint64_t bytes = static_cast<uint64_t>(n) * type_size(pr.type);
-                    if (static_cast<uint64_t>(end - p) < bytes) fail_eof(p - data_, el, i);
-                    p += bytes;
+                    p = skip_property<Swap>(pr, el, i, p);
                     continue;
                 }
                 const size_t sz = type_size(pr.type);
@@ -725,43 +759,26 @@ private:
                                             PlyMesh& mesh, TriangleSink& tris) const {
         const unsigned char* const end = data_ + size_;
         for (const Property& pr : el.props) {
-            if (!pr.is_list) {
-                const size_t sz = type_size(pr.type);
-                if (static_cast<size_t>(end - p) < sz) fail_eof(p - data_, el, rec);
-                p += sz;
+            if (pr.role != Role::Indices) {
+                p = skip_property<Swap>(pr, el, rec, p);
                 continue;
             }
-            const size_t cs = type_size(pr.count_type);
-            if (static_cast<size_t>(end - p) < cs) fail_eof(p - data_, el, rec);
-            const int64_t n = load_int<Swap>(p, pr.count_type);
-            if (n < 0)
-                fail_byte(p - data_, "negative list count " + std::to_string(n) + " in " +
-                                         record_text(el, rec));
-            if (pr.role == Role::Indices && n < 3)
+            const int64_t n = list_count<Swap>(pr, el, rec, p);
+            if (n < 3)
                 fail_byte(p - data_, "face with " + std::to_string(n) +
                                          " vertices (at least 3 needed) in " +
                                          record_text(el, rec));
-            p += cs;
+            p += type_size(pr.count_type);
             const size_t isz = type_size(pr.type);
             const uint64_t bytes = static_cast<uint64_t>(n) * isz;  // n < 2^32, no overflow
             if (static_cast<uint64_t>(end - p) < bytes) fail_eof(p - data_, el, rec);
-            if (pr.role != Role::Indices) {
-                p += bytes;
-                continue;
-            }
-            uint32_t first = 0, prev = 0;
+            Fan fan;
             for (int64_t k = 0; k < n; ++k, p += isz) {
                 const int64_t v = load_int<Swap>(p, pr.type);
                 if (static_cast<uint64_t>(v) >= vertex_count_)  // negative -> huge
                     fail_byte(p - data_,
                               bad_index_text(v, vertex_count_) + " in " + record_text(el, rec));
-                const uint32_t u = static_cast<uint32_t>(v);
-                if (k == 0) {
-                    first = u;
-                } else if (k >= 2) {
-                    tris.put(first, prev, u);
-                }
-                prev = u;
+                fan.add(k, static_cast<uint32_t>(v), tris);
             }
             if (n > 3) ++mesh.polygons_split;
         }
@@ -826,27 +843,8 @@ private:
             return pos + static_cast<size_t>(need);
         }
         const unsigned char* p = data_ + pos;
-        const unsigned char* const end = data_ + size_;
-        for (uint64_t i = 0; i < el.count; ++i) {
-            for (const Property& pr : el.props) {
-                if (!pr.is_list) {
-                    const size_t sz = type_size(pr.type);
-                    if (static_cast<size_t>(end - p) < sz) fail_eof(p - data_, el, i);
-                    p += sz;
-                    continue;
-                }
-                const size_t cs = type_size(pr.count_type);
-                if (static_cast<size_t>(end - p) < cs) fail_eof(p - data_, el, i);
-                const int64_t n = load_int<Swap>(p, pr.count_type);
-                if (n < 0)
-                    fail_byte(p - data_, "negative list count " + std::to_string(n) + " in " +
-                                             record_text(el, i));
-                p += cs;
-                const uint64_t bytes = static_cast<uint64_t>(n) * type_size(pr.type);
-                if (static_cast<uint64_t>(end - p) < bytes) fail_eof(p - data_, el, i);
-                p += bytes;
-            }
-        }
+        for (uint64_t i = 0; i < el.count; ++i)
+            for (const Property& pr : el.props) p = skip_property<Swap>(pr, el, i, p);
         return static_cast<size_t>(p - data_);
     }
 
@@ -936,19 +934,13 @@ private:
                         fail_line(c.line, "face with " + std::to_string(n) +
                                               " vertices (at least 3 needed) in " +
                                               record_text(el, i));
-                    uint32_t first = 0, prev = 0;
+                    Fan fan;
                     for (int64_t k = 0; k < n; ++k) {
                         const int64_t v = ascii_int(c, token(c, el, i), el, i);
                         if (static_cast<uint64_t>(v) >= vertex_count_)
                             fail_line(c.line, bad_index_text(v, vertex_count_) + " in " +
                                                   record_text(el, i));
-                        const uint32_t u = static_cast<uint32_t>(v);
-                        if (k == 0) {
-                            first = u;
-                        } else if (k >= 2) {
-                            tris.put(first, prev, u);
-                        }
-                        prev = u;
+                        fan.add(k, static_cast<uint32_t>(v), tris);
                     }
                     if (n > 3) ++mesh.polygons_split;
                 }

@@ -20,8 +20,8 @@
 #include <utility>
 
 #include "obj_import.h"
-#include "text_file.h"
 #include "rt/error.h"
+#include "rt/files.h"
 
 namespace rt {
 #ifndef RT_NO_OBJ

@@ -1,4 +1,5 @@
-// Whole-file reading and path helpers shared by the scene loaders and rtconvert.
+// Whole-file reading and file-name helpers, shared by the scene loaders, the image
+// writer and rtconvert.
 #pragma once
 #include <string>
 
@@ -12,5 +13,9 @@ std::string read_text_file(const std::string& path);
 // The folder part of `path` with its trailing '/', or "" for a bare file name:
 // relative paths inside a file (PLY, MTL) are resolved by prefixing it.
 std::string dirname_of(const std::string& path);
+
+// The file name's extension from its last '.', lower-cased (".xml" for "a/B.XML"),
+// or "" when the name has no '.'. Formats are chosen by extension in any case.
+std::string lower_extension(const std::string& path);
 
 }  // namespace rt

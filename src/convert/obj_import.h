@@ -1,5 +1,5 @@
 // Internal: Wavefront OBJ (+MTL) -> a scene tree of our JSON format plus its meshes,
-// through tinyobjloader (Debian libtinyobjloader-dev). src/convert writes the result.
+// through tinyobjloader (Debian libtinyobjloader-dev); convert.cpp writes the result.
 #pragma once
 #include <nlohmann/json.hpp>
 

@@ -1,25 +1,22 @@
-// JSON scene loader: text -> SceneDesc. Every value in the course's files is a
+// The scene tree (rt/scene_tree.h) -> SceneDesc. Every value in the course's files is a
 // string ("1 2 3"); numbers are also accepted where one number is expected.
 // Every reference (material ids, vertex ids) is resolved and range-checked
 // here, once; errors name the file and the JSON pointer of the offending value.
 #include <nlohmann/json.hpp>
-#include <sys/stat.h>
 
-#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <chrono>
 #include <cmath>
-#include <cstring>
-#include <fstream>
 #include <map>
 #include <sstream>
 #include <unordered_map>
 
-#include "json_scene.h"
+#include "rt/camera.h"
 #include "rt/error.h"
-#include "rt/loader.h"
+#include "rt/files.h"
 #include "rt/ply.h"
-#include "text_file.h"
+#include "rt/scene_tree.h"
 
 namespace rt {
 namespace {
@@ -242,6 +239,12 @@ private:
         return s.str();
     }
 
+    // The VertexData entry a one-id key (Center, Point) names.
+    const Vec3& vertex_ref(const json& obj, const std::string& path, const char* key) const {
+        const std::string kp = path + "/" + key;
+        return vertices_[vertex_id(exactly(require(obj, path, key), kp, 1)[0], kp)];
+    }
+
     uint32_t material_ref(const json& obj, const std::string& path) const {
         const json& v = require(obj, path, "Material");
         const std::string mp = path + "/Material";
@@ -355,39 +358,28 @@ private:
             d.height = static_cast<int>(res[1]);
             d.image_name = text(require(c, cp, "ImageName"), cp + "/ImageName");
             if (d.image_name.empty()) fail(cp + "/ImageName", "must not be empty");
-            std::string gaze_path;
-            if (look_at) {
-                // spec 3: a symmetric near plane around the gaze direction; FovY in
-                // degrees spans it vertically, the aspect ratio comes from the resolution.
-                gaze_path = cp + "/GazePoint";
-                d.gaze = vec3(require(c, cp, "GazePoint"), gaze_path) - d.position;
-                if (!(length(d.gaze) > 0)) fail(gaze_path, "GazePoint must differ from Position");
+            if (look_at) {  // spec 3; the camera math is in src/camera
+                const std::string gaze_path = cp + "/GazePoint";
+                const Vec3 gaze_point = vec3(require(c, cp, "GazePoint"), gaze_path);
+                if (!(length(gaze_point - d.position) > 0)) fail(gaze_path, "GazePoint must differ from Position");
                 const Real fovy = real(require(c, cp, "FovY"), cp + "/FovY");
                 if (!(fovy > 0 && fovy < 180)) fail(cp + "/FovY", "must be between 0 and 180 degrees");
-                const Real pi = Real(3.14159265358979323846);
-                d.top = d.near_distance * std::tan(fovy * pi / 360);
-                d.bottom = -d.top;
-                d.right = d.top * Real(d.width) / Real(d.height);
-                d.left = -d.right;
+                set_look_at(d, gaze_point, fovy);
             } else {
-                gaze_path = cp + "/Gaze";
-                d.gaze = nonzero_vec3(require(c, cp, "Gaze"), gaze_path);
+                const Vec3 gaze = nonzero_vec3(require(c, cp, "Gaze"), cp + "/Gaze");
                 // The course's 2021 spheres.xml writes a fifth number; its parser read four.
                 const std::vector<double> np = numbers(require(c, cp, "NearPlane"), cp + "/NearPlane");
                 if (np.size() < 4) fail(cp + "/NearPlane", "expected 4 numbers, got " + std::to_string(np.size()));
                 if (np.size() > 4)
                     out_.warnings.push_back(file_ + ": " + cp + "/NearPlane: " + std::to_string(np.size()) +
                                             " numbers, the first 4 used (left right bottom top)");
-                d.left = static_cast<Real>(np[0]);
-                d.right = static_cast<Real>(np[1]);
-                d.bottom = static_cast<Real>(np[2]);
-                d.top = static_cast<Real>(np[3]);
+                set_near_plane(d, gaze, static_cast<Real>(np[0]), static_cast<Real>(np[1]), static_cast<Real>(np[2]),
+                               static_cast<Real>(np[3]));
                 if (d.left == d.right || d.bottom == d.top)
                     fail(cp + "/NearPlane", "left/right and bottom/top must differ");
             }
             d.up = nonzero_vec3(require(c, cp, "Up"), cp + "/Up");
-            const Vec3 side = cross(normalize(d.up), normalize(d.gaze));
-            if (!(length(side) > Real(1e-9))) fail(cp + "/Up", "Up is parallel to the gaze direction");
+            if (!spans_camera_frame(d.gaze, d.up)) fail(cp + "/Up", "Up is parallel to the gaze direction");
             out_.cameras.push_back(d);
         });
         if (out_.cameras.empty()) fail(path, "no camera defined");
@@ -496,7 +488,7 @@ private:
             check_keys(s, spp, path + "/Sphere", {"_id", "Material", "Center", "Radius"});
             SphereDesc d;
             d.material = material_ref(s, spp);
-            d.center = vertices_[vertex_id(exactly(require(s, spp, "Center"), spp + "/Center", 1)[0], spp + "/Center")];
+            d.center = vertex_ref(s, spp, "Center");
             d.radius = positive(require(s, spp, "Radius"), spp + "/Radius");
             out_.spheres.push_back(d);
         });
@@ -505,7 +497,7 @@ private:
             check_keys(p, pp, path + "/Plane", {"_id", "Material", "Point", "Normal"});
             PlaneDesc d;
             d.material = material_ref(p, pp);
-            d.point = vertices_[vertex_id(exactly(require(p, pp, "Point"), pp + "/Point", 1)[0], pp + "/Point")];
+            d.point = vertex_ref(p, pp, "Point");
             d.normal = nonzero_vec3(require(p, pp, "Normal"), pp + "/Normal");
             out_.planes.push_back(d);
         });
@@ -514,50 +506,11 @@ private:
 
 }  // namespace
 
-SceneDesc parse_scene(const std::string& json_text, const std::string& path) {
-    json root;
-    try {
-        root = json::parse(json_text);
-    } catch (const json::parse_error& e) {
-        // nlohmann's message reads "[json.exception.parse_error.101] parse error at line 3, column 5: ..."
-        std::string what = e.what();
-        const size_t at = what.find("parse error");
-        throw InputError(path + ": " + (at == std::string::npos ? what : what.substr(at)));
-    } catch (const json::out_of_range& e) {
-        // A number literal beyond the double range ("1e999"): nlohmann reports
-        // "[json.exception.out_of_range.406] number overflow parsing '1e999'" with no
-        // place, so the place is where that literal first occurs in the text.
-        std::string what = e.what();
-        const size_t q0 = what.find('\''), q1 = what.rfind('\'');
-        std::string place;
-        if (q0 != std::string::npos && q1 > q0) {
-            const size_t at = json_text.find(what.substr(q0 + 1, q1 - q0 - 1));
-            if (at != std::string::npos) {
-                const size_t line = 1 + static_cast<size_t>(std::count(json_text.begin(), json_text.begin() + at, '\n'));
-                const size_t nl = json_text.rfind('\n', at);
-                place = "line " + std::to_string(line) + ", column " +
-                        std::to_string(at - (nl == std::string::npos ? 0 : nl + 1) + 1) + ": ";
-            }
-        }
-        const size_t msg = what.find("number overflow");
-        throw InputError(path + ": " + place + (msg == std::string::npos ? what : what.substr(msg)) +
-                         " (not a finite number)");
-    } catch (const json::exception& e) {
-        throw InputError(path + ": " + e.what());
-    }
-    return scene_from_json(root, path);
-}
-
 SceneDesc scene_from_json(const json& root, const std::string& path) {
     SceneDesc d;
     d.path = path;
     Loader(path, d).load(root);
     return d;
-}
-
-SceneDesc load_scene(const std::string& path) {
-    const std::string text = read_text_file(path);
-    return is_xml_path(path) ? parse_scene_xml(text, path) : parse_scene(text, path);
 }
 
 }  // namespace rt

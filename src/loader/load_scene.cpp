@@ -1,0 +1,25 @@
+// The scene loader's entry points (rt/loader.h): the file's name picks the reader
+// (JSON or the course's XML), each reader produces the same JSON tree
+// (rt/scene_tree.h), and scene_from_json turns that tree into a SceneDesc.
+#include "rt/files.h"
+#include "rt/loader.h"
+#include "rt/scene_tree.h"
+
+namespace rt {
+
+bool is_xml_path(const std::string& path) { return lower_extension(path) == ".xml"; }
+
+SceneDesc parse_scene(const std::string& json_text, const std::string& path) {
+    return scene_from_json(parse_json_tree<nlohmann::json>(json_text, path), path);
+}
+
+SceneDesc parse_scene_xml(const std::string& xml_text, const std::string& path) {
+    return scene_from_json(nlohmann::json(xml_to_json_tree(xml_text, path)), path);
+}
+
+SceneDesc load_scene(const std::string& path) {
+    const std::string text = read_text_file(path);
+    return is_xml_path(path) ? parse_scene_xml(text, path) : parse_scene(text, path);
+}
+
+}  // namespace rt
