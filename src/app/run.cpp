@@ -70,7 +70,7 @@ std::optional<LoadedScene> load(const std::string& scene_path, const RunOptions&
         if (s.figures.degenerate > 0 && !o.quiet)
             std::fprintf(stderr, "warning: %s: skipped %zu degenerate triangle%s\n", scene_path.c_str(),
                          s.figures.degenerate, s.figures.degenerate > 1 ? "s" : "");
-        return s;
+        return std::optional<LoadedScene>(std::move(s));  // moved, never copied
     } catch (const InputError& e) {
         std::fprintf(stderr, "%s\n", e.what());
     } catch (const std::bad_alloc&) {
