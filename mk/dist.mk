@@ -3,8 +3,9 @@
 #
 # It holds Makefile, mk/, include/, src/, scenes/ and README.md (the files git knows of,
 # committed or not, minus ignored ones), plus third_party/: the headers this build uses,
-# copied now from the Debian packages (nlohmann/ from nlohmann-json3-dev,
-# stb/stb_image_write.h and stb/stb_image.h from libstb-dev) with their copyright files.
+# copied now from the Debian packages (nlohmann/ from nlohmann-json3-dev, CLI/ from
+# libcli11-dev, stb/stb_image_write.h and stb/stb_image.h from libstb-dev) with their
+# copyright files.
 # The Makefile sees third_party/stb/stb_image_write.h and compiles with -Ithird_party
 # and src/image/stb_impl.cpp instead of linking libstb; mk/convert.mk leaves out XML
 # scenes and ./rtconvert where pugixml and tinyobjloader are missing.
@@ -19,20 +20,24 @@ DIST_FILES   = $(shell if git rev-parse --is-inside-work-tree >/dev/null 2>&1; t
                else find Makefile README.md mk include src scenes -type f | sort; fi)
 DIST_NLOHMANN := /usr/include/nlohmann
 DIST_STB      := /usr/include/stb
+DIST_CLI11    := /usr/include/CLI
 
 .PHONY: dist dist-check
 dist:
 	@test -f $(DIST_NLOHMANN)/json.hpp || { echo "make dist: $(DIST_NLOHMANN)/json.hpp missing (apt-get install nlohmann-json3-dev)"; exit 1; }
+	@test -f $(DIST_CLI11)/CLI.hpp || { echo "make dist: $(DIST_CLI11)/CLI.hpp missing (apt-get install libcli11-dev)"; exit 1; }
 	@test -f $(DIST_STB)/stb_image_write.h -a -f $(DIST_STB)/stb_image.h || { echo "make dist: $(DIST_STB)/stb_image*.h missing (apt-get install libstb-dev)"; exit 1; }
 	@rm -rf $(DIST_STAGE) && mkdir -p $(DIST_STAGE)/third_party/stb
 	@for f in $(DIST_FILES); do [ -f "$$f" ] && { mkdir -p "$(DIST_STAGE)/$$(dirname "$$f")"; cp -p "$$f" "$(DIST_STAGE)/$$f"; }; done; true
 	@cp -R $(DIST_NLOHMANN) $(DIST_STAGE)/third_party/nlohmann
+	@cp -R $(DIST_CLI11) $(DIST_STAGE)/third_party/CLI
 	@cp $(DIST_STB)/stb_image_write.h $(DIST_STB)/stb_image.h $(DIST_STAGE)/third_party/stb/
 	@cp /usr/share/doc/nlohmann-json3-dev/copyright $(DIST_STAGE)/third_party/nlohmann/COPYRIGHT 2>/dev/null || true
+	@cp /usr/share/doc/libcli11-dev/copyright $(DIST_STAGE)/third_party/CLI/COPYRIGHT 2>/dev/null || true
 	@cp /usr/share/doc/libstb-dev/copyright $(DIST_STAGE)/third_party/stb/COPYRIGHT 2>/dev/null || true
 	@{ [ -f third_party/README.md ] && cat third_party/README.md; echo; \
 	   echo "Copied by make dist on $$(date -u +%Y-%m-%d) from:"; echo; \
-	   dpkg-query -W -f '- $${Package} $${Version}\n' nlohmann-json3-dev libstb-dev 2>/dev/null || echo "- $(DIST_NLOHMANN), $(DIST_STB)"; \
+	   dpkg-query -W -f '- $${Package} $${Version}\n' nlohmann-json3-dev libcli11-dev libstb-dev 2>/dev/null || echo "- $(DIST_NLOHMANN), $(DIST_CLI11), $(DIST_STB)"; \
 	 } > $(DIST_STAGE)/third_party/README.md
 	@rm -f $(DIST_TAR)
 	tar --sort=name --owner=0 --group=0 --numeric-owner -czf $(DIST_TAR) -C $(DIST_STAGE) .

@@ -252,6 +252,106 @@ TEST(Cli, BadOptionValuesAreRejectedWithoutRendering) {
     }
 }
 
+// Every option takes "--opt value" and "--opt=value"; short ones also "-j 2" and "-j2".
+// The spellings of one setting give the same image and the same --stats figures.
+TEST(Cli, EveryOptionTakesItsValueInEverySpelling) {
+    TempDir tmp;
+    write_scene(tmp.path(), "scene.json", sample_scene("s.png", "8 8"));
+    const std::vector<std::vector<std::vector<std::string>>> spellings = {
+        {{"-j", "2"}, {"-j2"}, {"--threads", "2"}, {"--threads=2"}},
+        {{"--rounding", "nearest"}, {"--rounding=nearest"}},
+        {{"--max-depth", "1"}, {"--max-depth=1"}},
+        {{"--epsilon-scale", "2"}, {"--epsilon-scale=2"}},
+        {{"--bvh-leaf", "2"}, {"--bvh-leaf=2"}},
+        {{"--bvh-bins", "4"}, {"--bvh-bins=4"}},
+        {{"--bvh-split", "median"}, {"--bvh-split=median"}},
+        {{"--bvh-cost", "2"}, {"--bvh-cost=2"}},
+        {{"--bvh-block", "2"}, {"--bvh-block=2"}},
+    };
+    for (const auto& same : spellings) {
+        std::vector<std::string> stats;
+        for (size_t i = 0; i < same.size(); ++i) {
+            std::vector<std::string> args = same[i];
+            const std::string out = tmp / ("out" + std::to_string(i));
+            args.insert(args.end(), {"-q", "--stats=" + out + ".json", "--output-dir=" + out, "scene.json"});
+            RunResult r = run_raytracer(args, tmp.path());
+            ASSERT_EQ(r.exit_code, 0) << join(args) << dump(r);
+            EXPECT_EQ(r.err, "") << join(args);
+            ASSERT_TRUE(is_png(out + "/s.png", 8, 8)) << join(args);
+            json doc = json::parse(read_text(out + ".json"));
+            json& im = doc["images"][0];
+            for (const char* varies : {"seconds", "rays_per_second", "peak_rss_bytes", "image"}) im.erase(varies);
+            stats.push_back(doc.dump());
+            if (i > 0) {
+                EXPECT_TRUE(read_text(out + "/s.png") == read_text(tmp / "out0/s.png")) << join(args);
+                EXPECT_EQ(stats[i], stats[0]) << join(args) << " and " << join(same[0]);
+            }
+        }
+    }
+}
+
+TEST(Cli, TheLastOfARepeatedOptionCounts) {
+    TempDir tmp;
+    write_scene(tmp.path(), "scene.json", sample_scene("s.png", "8 8"));
+    RunResult r = run_raytracer({"-q", "-j", "3", "-j1", "--no-cull", "--cull", "--stats", "first.json", "--stats",
+                                 "st.json", "-o", "a", "-o", "b", "scene.json"},
+                                tmp.path());
+    ASSERT_EQ(r.exit_code, 0) << dump(r);
+    EXPECT_EQ(list_files(tmp.path()), (std::vector<std::string>{"b/s.png", "scene.json", "st.json"})) << dump(r);
+    const json doc = json::parse(read_text(tmp / "st.json"));
+    EXPECT_EQ(doc["images"][0]["threads"], 1);
+    EXPECT_EQ(doc["images"][0]["cull"], true);
+}
+
+TEST(Cli, UsageErrorsAreOneLinePlusTheUsage) {
+    TempDir tmp;
+    write_scene(tmp.path(), "scene.json", sample_scene());
+    const std::string usage =
+        "usage: raytracer [-o DIR] [-j N] [--cull|--no-cull] [--rounding truncate|nearest] [--stats FILE] [-q] "
+        "scene.json|scene.xml...";
+    const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+        {{"--no-such-option", "scene.json"}, "unknown option '--no-such-option'"},
+        {{"-j", "many", "scene.json"}, "--threads needs a whole number from 1 to 1024, got 'many'"},
+        {{"--threads=0", "scene.json"}, "--threads needs a whole number from 1 to 1024, got '0'"},
+        {{"--rounding=up", "scene.json"}, "--rounding takes truncate or nearest, got 'up'"},
+        {{"--stats=", "scene.json"}, "--stats needs a file name"},
+        {{"--max-depth=x", "scene.json"}, "--max-depth needs a whole number from 0 to 10000, got 'x'"},
+        {{"--epsilon-scale", "0", "scene.json"}, "--epsilon-scale needs a positive number, got '0'"},
+        {{"--bvh-cost", "200", "scene.json"}, "--bvh-cost needs a number from 0.1 to 100, got '200'"},
+        {{"--bvh-split", "fast", "scene.json"}, "--bvh-split takes sah or median, got 'fast'"},
+        {{"scene.json", "-o"}, "option --output-dir needs a value"},
+        {{"-q"}, "no scene file given"},
+    };
+    for (const auto& [args, message] : cases) {
+        RunResult r = run_raytracer(args, tmp.path());
+        EXPECT_EQ(r.exit_code, 2) << join(args) << dump(r);
+        EXPECT_EQ(r.err, "raytracer: " + message + "\n" + usage + "\n") << join(args);
+        EXPECT_EQ(r.out, "") << join(args);
+    }
+    EXPECT_EQ(list_files(tmp.path()), std::vector<std::string>{"scene.json"});
+}
+
+TEST(Cli, HelpNamesEveryOption) {
+    RunResult r = run_raytracer({"--help"});
+    ASSERT_EQ(r.exit_code, 0) << dump(r);
+    EXPECT_EQ(r.err, "");
+    for (const char* option : {"-o, --output-dir DIR", "-j, --threads N", "--cull, --no-cull", "--rounding MODE",
+                               "--stats FILE", "-q, --quiet", "-h, --help", "--version", "--max-depth N",
+                               "--epsilon-scale F", "--bvh-leaf N", "--bvh-bins N", "--bvh-split MODE", "--bvh-cost F",
+                               "--bvh-block N", "exit status"})
+        EXPECT_TRUE(contains(r.out, option)) << option << dump(r);
+    RunResult v = run_raytracer({"--version"});
+    EXPECT_EQ(v.out, "raytracer 1.0\n") << dump(v);
+}
+
+TEST(Cli, DoubleDashEndsTheOptions) {
+    TempDir tmp;
+    write_scene(tmp.path(), "-scene.json", sample_scene("s.png", "8 8"));
+    RunResult r = run_raytracer({"-q", "--", "-scene.json"}, tmp.path());
+    EXPECT_EQ(r.exit_code, 0) << dump(r);
+    EXPECT_TRUE(is_png(tmp / "s.png", 8, 8));
+}
+
 // ---- Where images go ----------------------------------------------------------------
 
 TEST(Cli, RendersOnePngPerCameraIntoCurrentDirectory) {

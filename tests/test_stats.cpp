@@ -19,8 +19,10 @@
 #include <vector>
 
 #include "rt/bvh.h"
+#include "rt/error.h"
 #include "rt/loader.h"
 #include "rt/render.h"
+#include "rt/run.h"
 #include "rt/scene.h"
 #include "test_support.h"
 
@@ -330,6 +332,61 @@ TEST(Stats, UnwritableStatsFileIsAnError) {
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_NE(r.err.find("stats.json: cannot write"), std::string::npos) << r.err;
     EXPECT_TRUE(file_exists(dir / "out.png"));  // the image itself was written
+}
+
+// The command's pipeline as a library function: one record per image written, the
+// figures --stats writes; a bad scene fails alone.
+TEST(Stats, RunScenesReturnsARecordPerImage) {
+    TempDir dir;
+    const std::string a = write_scene(dir.path(), 32, 16, "a.png");
+    write_text(dir / "bad.json", "{\"Scene\": 1}");
+    rt::RunOptions o;
+    o.output_dir = dir / "out";
+    o.quiet = true;
+    o.render.threads = 2;
+    o.max_depth = 2;
+    o.bvh.max_leaf = 4;
+    const rt::RunReport report = rt::run_scenes({a, dir / "bad.json", a}, o);
+    EXPECT_FALSE(report.ok);
+    ASSERT_EQ(report.images.size(), 2u);
+    for (const rt::ImageRecord& r : report.images) {
+        EXPECT_EQ(r.scene, a);
+        EXPECT_EQ(r.image, dir / "out/a.png");
+        EXPECT_EQ(r.camera, 1u);
+        EXPECT_EQ(r.width, 32);
+        EXPECT_EQ(r.height, 16);
+        EXPECT_EQ(r.figures.triangles, 2u + 3u + 4u);
+        EXPECT_EQ(r.figures.spheres, 3u);
+        EXPECT_EQ(r.figures.max_recursion_depth, 2);
+        EXPECT_EQ(r.render_stats.threads, 2);
+        EXPECT_EQ(r.render_stats.rays.camera, 32u * 16u);
+        EXPECT_EQ(r.bvh.max_leaf, 4u);
+        EXPECT_GT(r.peak_rss, 0u);
+    }
+    EXPECT_TRUE(file_exists(dir / "out/a.png"));
+    const json doc = json::parse(rt::stats_json(report.images, "raytracer 1.0"));
+    ASSERT_EQ(doc.at("images").size(), 2u);
+    EXPECT_EQ(doc["images"][1]["primitives"]["triangles"], 9);
+    EXPECT_EQ(doc["images"][1]["bvh"]["max_leaf"], 4);
+}
+
+// mkdir -p of an image's folder: missing folders are made, an existing one (or a file in
+// its place, which the write reports) is no error, a folder that cannot be made is.
+TEST(Stats, MakeParentFolders) {
+    TempDir dir;
+    rt::make_parent_folders(dir / "a/b/c/x.png");
+    EXPECT_TRUE(file_exists(dir / "a/b/c"));
+    rt::make_parent_folders(dir / "a/b/c/x.png");
+    rt::make_parent_folders("x.png");
+    write_text(dir / "file", "");
+    rt::make_parent_folders(dir / "file/x.png");
+    try {
+        rt::make_parent_folders("/proc/no_such_dir/d/x.png");
+        ADD_FAILURE() << "no error";
+    } catch (const rt::InputError& e) {
+        EXPECT_STREQ(e.what(),
+                     "/proc/no_such_dir/d/x.png: cannot create folder /proc/no_such_dir: No such file or directory");
+    }
 }
 
 // Default build options are the tuned constants: the tree is the same, node for node.

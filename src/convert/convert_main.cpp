@@ -1,110 +1,64 @@
 // rtconvert: converts scenes between the course's XML format, our JSON format,
 // Wavefront OBJ (+MTL) and binary PLY. See rt/convert.h and the README.
-#include <cerrno>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
 #include <new>
 #include <string>
 #include <vector>
 
+#include "rt/cli.h"
 #include "rt/convert.h"
 #include "rt/error.h"
 
 namespace {
 
-const char* kVersion = "rtconvert 1.0";
-const char* kUsage =
-    "usage: rtconvert [--shading auto|flat|smooth] [--size WxH] [--image NAME] [--sphere-segments N] [-q] INPUT OUTPUT";
-
-void print_help() {
-    std::printf(
-        "%s\n\n"
-        "Converts INPUT to OUTPUT, the direction chosen by their extensions:\n"
-        "  scene.xml  -> scene.json   the course's XML format to JSON (as the course converted its scenes)\n"
-        "  scene.json -> scene.xml    and back; relative PLY paths follow the output to its folder\n"
-        "  model.obj  -> scene.json   OBJ (+MTL) to a JSON scene and one binary PLY per mesh\n"
-        "                             (scene_1.ply, ...) beside it, with a camera framing the model,\n"
-        "                             an ambient and a point light (also -> scene.xml)\n"
-        "  scene.json -> model.obj    a scene (JSON or XML) to OBJ + MTL (model.mtl) beside it\n\n"
-        "options (OBJ import):\n"
-        "      --shading MODE       auto (default: smooth where the OBJ has normals or smoothing\n"
-        "                           groups), flat or smooth\n"
-        "      --size WxH           the camera's image resolution (default 800x600)\n"
-        "      --image NAME         the camera's image name (default: OUTPUT's stem + .png)\n"
-        "options (OBJ export):\n"
-        "      --sphere-segments N  segments around each tessellated sphere (default 48)\n"
-        "  -q, --quiet              print errors only\n"
-        "  -h, --help               show this help\n"
-        "      --version            show the version\n\n"
-        "exit status: 0 converted, 1 bad input or an output could not be written, 2 usage error\n",
-        kUsage);
-}
-
-[[noreturn]] void usage_error(const std::string& msg) {
-    std::fprintf(stderr, "rtconvert: %s\n%s\n", msg.c_str(), kUsage);
-    std::exit(2);
-}
-
-long whole_number(const std::string& text, const std::string& what, long lo, long hi) {
-    char* end = nullptr;
-    errno = 0;
-    const long n = std::strtol(text.c_str(), &end, 10);
-    if (text.empty() || *end != '\0' || errno != 0 || n < lo || n > hi)
-        usage_error(what + " needs a whole number from " + std::to_string(lo) + " to " + std::to_string(hi) +
-                    ", got '" + text + "'");
-    return n;
-}
+const rt::cli::Program kProgram{
+    "rtconvert", "rtconvert 1.0",
+    "usage: rtconvert [--shading auto|flat|smooth] [--size WxH] [--image NAME] [--sphere-segments N] [-q] INPUT OUTPUT",
+    "Converts INPUT to OUTPUT, the direction chosen by their extensions:\n"
+    "  scene.xml  -> scene.json   the course's XML format to JSON (as the course converted its scenes)\n"
+    "  scene.json -> scene.xml    and back; relative PLY paths follow the output to its folder\n"
+    "  model.obj  -> scene.json   OBJ (+MTL) to a JSON scene and one binary PLY per mesh\n"
+    "                             (scene_1.ply, ...) beside it, with a camera framing the model,\n"
+    "                             an ambient and a point light (also -> scene.xml)\n"
+    "  scene.json -> model.obj    a scene (JSON or XML) to OBJ + MTL (model.mtl) beside it\n",
+    "exit status: 0 converted, 1 bad input or an output could not be written, 2 usage error"};
 
 }  // namespace
 
 int main(int argc, char** argv) {
+    namespace cli = rt::cli;
     rt::ConvertOptions options;
-    bool quiet = false, only_files = false;
+    bool quiet = false;
     std::vector<std::string> files;
-    for (int i = 1; i < argc; ++i) {
-        const std::string a = argv[i];
-        auto value = [&](const std::string& name) -> std::string {
-            const size_t eq = a.find('=');
-            if (eq != std::string::npos) return a.substr(eq + 1);
-            if (i + 1 >= argc) usage_error("option " + name + " needs a value");
-            return argv[++i];
-        };
-        auto is = [&](const char* name) { return a == name || a.rfind(std::string(name) + "=", 0) == 0; };
-        if (only_files || a.empty() || a[0] != '-' || a == "-") {
-            files.push_back(a);
-        } else if (a == "--") {
-            only_files = true;
-        } else if (a == "-h" || a == "--help") {
-            print_help();
-            return 0;
-        } else if (a == "--version") {
-            std::printf("%s\n", kVersion);
-            return 0;
-        } else if (a == "-q" || a == "--quiet") {
-            quiet = true;
-        } else if (is("--shading")) {
-            const std::string v = value("--shading");
-            if (v == "auto") options.shading = rt::ObjShading::Auto;
-            else if (v == "flat") options.shading = rt::ObjShading::Flat;
-            else if (v == "smooth") options.shading = rt::ObjShading::Smooth;
-            else usage_error("--shading takes auto, flat or smooth, got '" + v + "'");
-        } else if (is("--size")) {
-            const std::string v = value("--size");
-            const size_t x = v.find('x');
-            if (x == std::string::npos) usage_error("--size takes WIDTHxHEIGHT, got '" + v + "'");
-            options.width = static_cast<int>(whole_number(v.substr(0, x), "--size", 1, 16384));
-            options.height = static_cast<int>(whole_number(v.substr(x + 1), "--size", 1, 16384));
-        } else if (is("--image")) {
-            options.image_name = value("--image");
-            if (options.image_name.empty()) usage_error("--image needs a name");
-        } else if (is("--sphere-segments")) {
-            options.sphere_segments = static_cast<int>(whole_number(value("--sphere-segments"), "--sphere-segments", 3, 4096));
-        } else {
-            usage_error("unknown option '" + a + "'");
-        }
-    }
-    if (files.size() != 2) usage_error(files.size() < 2 ? "needs an INPUT and an OUTPUT file" : "too many files");
+    CLI::App app;
+    cli::setup(app, kProgram);
+    const std::string obj_import = "options (OBJ import)", obj_export = "options (OBJ export)";
+    cli::add_choice(
+        app, "--shading", "auto (default: smooth where the OBJ has normals or smoothing groups), flat or smooth",
+        options.shading,
+        {{"auto", rt::ObjShading::Auto}, {"flat", rt::ObjShading::Flat}, {"smooth", rt::ObjShading::Smooth}})
+        ->group(obj_import);
+    cli::add_value(app, "--size", "WxH", "the camera's image resolution (default 800x600)",
+                   [&options](const std::string& v) {
+                       const size_t x = v.find('x');
+                       if (x == std::string::npos) cli::usage_error("--size takes WIDTHxHEIGHT, got '" + v + "'");
+                       options.width = static_cast<int>(cli::whole_number("--size", v.substr(0, x), 1, 16384));
+                       options.height = static_cast<int>(cli::whole_number("--size", v.substr(x + 1), 1, 16384));
+                   })
+        ->group(obj_import);
+    cli::add_text(app, "--image", "NAME", "the camera's image name (default: OUTPUT's stem + .png)", options.image_name,
+                  "a name")
+        ->group(obj_import);
+    cli::add_whole(app, "--sphere-segments", "N", "segments around each tessellated sphere (default 48)",
+                   options.sphere_segments, 3, 4096)
+        ->group(obj_export);
+    app.add_flag("-q,--quiet", quiet, "print errors only");
+    app.add_option("files", files);
+    app.final_callback([&files] {
+        if (files.size() != 2)
+            cli::usage_error(files.size() < 2 ? "needs an INPUT and an OUTPUT file" : "too many files");
+    });
+    if (const auto status = cli::parse(app, kProgram, argc, argv)) return *status;
 
     try {
         const rt::ConvertResult r = rt::convert_file(files[0], files[1], options);

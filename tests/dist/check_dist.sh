@@ -4,7 +4,7 @@
 #
 # When run as root with unshare(1) available, the build runs in a private mount
 # namespace in which the Debian headers and libraries this project uses
-# (nlohmann-json3-dev, libstb-dev, libpugixml-dev, libtinyobjloader-dev, libgtest-dev)
+# (nlohmann-json3-dev, libcli11-dev, libstb-dev, libpugixml-dev, libtinyobjloader-dev, libgtest-dev)
 # are hidden, as on a machine with only g++. Otherwise it builds with
 # RT_HAVE_PUGIXML= RT_HAVE_TINYOBJ= and relies on the checks below: the compile lines
 # use -Ithird_party, nothing links libstb/pugixml/tinyobjloader, and no dependency file
@@ -20,7 +20,7 @@ mkdir "$work/src"
 tar -xf "$tarball" -C "$work/src"
 cd "$work/src"
 for f in Makefile README.md src/main.cpp src/image/stb_impl.cpp include/rt/render.h scenes/showcase.json \
-         third_party/nlohmann/json.hpp third_party/stb/stb_image_write.h third_party/stb/stb_image.h; do
+         third_party/nlohmann/json.hpp third_party/CLI/CLI.hpp third_party/stb/stb_image_write.h third_party/stb/stb_image.h; do
     [ -f "$f" ] || fail "the tarball lacks $f"
 done
 [ ! -e build ] && [ ! -e raytracer ] || fail "the tarball holds build products"
@@ -42,7 +42,7 @@ mount --bind /usr/include "$work/orig_include"
 for f in "$work"/orig_include/* "$work"/orig_include/.[!.]*; do
     [ -e "$f" ] || continue
     case "$(basename "$f")" in
-        nlohmann|stb|pugixml.hpp|pugiconfig.hpp|tiny_obj_loader.h|gtest|gmock) continue ;;
+        nlohmann|CLI|stb|pugixml.hpp|pugiconfig.hpp|tiny_obj_loader.h|gtest|gmock) continue ;;
     esac
     ln -s "$f" "$work/include_farm/$(basename "$f")"
 done
@@ -52,7 +52,7 @@ for lib in /usr/lib/*/libstb.* /usr/lib/*/libpugixml.* /usr/lib/*/libtinyobjload
     [ -e "$lib" ] && mount --bind "$work/empty" "$lib"
 done
 cd "$work/src"
-[ ! -e /usr/include/nlohmann ] && [ ! -e /usr/include/stb ] && [ ! -e /usr/include/pugixml.hpp ] || { echo "hiding failed"; exit 1; }
+[ ! -e /usr/include/nlohmann ] && [ ! -e /usr/include/CLI ] && [ ! -e /usr/include/stb ] && [ ! -e /usr/include/pugixml.hpp ] || { echo "hiding failed"; exit 1; }
 make -j"$(nproc)" >"$work/build.log" 2>&1
 HIDE
     unshare -m sh "$work/hide.sh" "$work" || { tail -30 "$work/build.log" 2>/dev/null; fail "make failed with the packaged headers hidden"; }
@@ -65,7 +65,7 @@ grep -q 'stb_impl' "$work/build.log" || fail "src/image/stb_impl.cpp was not com
 if grep -E -- '-l(stb|pugixml|tinyobjloader)' "$work/build.log"; then fail "the build links a packaged library"; fi
 [ -x raytracer ] || fail "no ./raytracer"
 [ ! -e rtconvert ] || fail "./rtconvert was built without pugixml and tinyobjloader"
-if find build -name '*.d' -exec cat {} + | grep -E '/usr/include/(nlohmann|stb|pugixml|tiny_obj)'; then
+if find build -name '*.d' -exec cat {} + | grep -E '/usr/include/(nlohmann|CLI|stb|pugixml|tiny_obj)'; then
     fail "a dependency file names a packaged header"
 fi
 if ldd ./raytracer | grep -E 'libstb|pugixml|tinyobj'; then fail "./raytracer needs a packaged library"; fi

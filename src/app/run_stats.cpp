@@ -1,4 +1,5 @@
-#include "run_stats.h"
+// The --stats document, the progress line and the process figures.
+#include "progress.h"
 
 #include <sys/resource.h>
 #include <unistd.h>
@@ -11,9 +12,10 @@
 #include <thread>
 
 #include "rt/real.h"
+#include "rt/run.h"
 
 namespace rt {
-namespace cli {
+namespace app {
 
 uint64_t peak_rss_bytes() {
     struct rusage u {};
@@ -34,52 +36,6 @@ std::string cpu_model() {
 }
 
 bool stderr_is_terminal() { return ::isatty(STDERR_FILENO) == 1; }
-
-std::string stats_json(const std::vector<ImageRecord>& images, const std::string& version) {
-    using nlohmann::ordered_json;
-    ordered_json doc;
-    doc["raytracer"] = version;
-    doc["precision"] = sizeof(Real) == sizeof(float) ? "float" : "double";
-    doc["machine"] = {{"cpu", cpu_model()}, {"hardware_threads", std::thread::hardware_concurrency()}};
-    ordered_json list = ordered_json::array();
-    for (const ImageRecord& r : images) {
-        const RayCounts& rays = r.render_stats.rays;
-        ordered_json j;
-        j["scene"] = r.scene;
-        j["image"] = r.image;
-        j["camera"] = r.camera;
-        j["width"] = r.width;
-        j["height"] = r.height;
-        j["primitives"] = {{"triangles", r.triangles},
-                           {"spheres", r.spheres},
-                           {"planes", r.planes},
-                           {"lights", r.lights},
-                           {"degenerate_skipped", r.degenerate}};
-        j["threads"] = r.render_stats.threads;
-        j["cull"] = r.cull;
-        j["max_recursion_depth"] = r.max_recursion_depth;
-        j["shadow_ray_epsilon"] = r.shadow_ray_epsilon;
-        j["seconds"] = {{"parse", r.times.parse}, {"ply", r.times.ply},     {"setup", r.times.setup},
-                        {"bvh", r.times.bvh},     {"render", r.render},    {"write", r.write}};
-        j["rays"] = {{"camera", rays.camera},
-                     {"shadow", rays.shadow},
-                     {"reflection", rays.reflection},
-                     {"refraction", rays.refraction},
-                     {"total", rays.total()}};
-        j["rays_per_second"] = r.render > 0 ? double(rays.total()) / r.render : 0.0;
-        j["bvh"] = {{"nodes", r.bvh_nodes},
-                    {"depth", r.bvh_depth},
-                    {"max_leaf", r.bvh.max_leaf},
-                    {"bins", r.bvh.bins},
-                    {"traversal_cost", r.bvh.traversal_cost},
-                    {"block", r.bvh.block},
-                    {"split", r.bvh.sah ? "sah" : "median"}};
-        j["peak_rss_bytes"] = r.peak_rss;
-        list.push_back(std::move(j));
-    }
-    doc["images"] = std::move(list);
-    return doc.dump(2) + "\n";
-}
 
 void ProgressLine::start(const std::string& label) {
     label_ = label;
@@ -113,5 +69,53 @@ void ProgressLine::clear() {
     shown_ = 0;
 }
 
-}  // namespace cli
+}  // namespace app
+
+std::string stats_json(const std::vector<ImageRecord>& images, const std::string& version) {
+    using nlohmann::ordered_json;
+    ordered_json doc;
+    doc["raytracer"] = version;
+    doc["precision"] = sizeof(Real) == sizeof(float) ? "float" : "double";
+    doc["machine"] = {{"cpu", app::cpu_model()}, {"hardware_threads", std::thread::hardware_concurrency()}};
+    ordered_json list = ordered_json::array();
+    for (const ImageRecord& r : images) {
+        const RayCounts& rays = r.render_stats.rays;
+        ordered_json j;
+        j["scene"] = r.scene;
+        j["image"] = r.image;
+        j["camera"] = r.camera;
+        j["width"] = r.width;
+        j["height"] = r.height;
+        const SceneFigures& f = r.figures;
+        j["primitives"] = {{"triangles", f.triangles},
+                           {"spheres", f.spheres},
+                           {"planes", f.planes},
+                           {"lights", f.lights},
+                           {"degenerate_skipped", f.degenerate}};
+        j["threads"] = r.render_stats.threads;
+        j["cull"] = r.cull;
+        j["max_recursion_depth"] = f.max_recursion_depth;
+        j["shadow_ray_epsilon"] = f.shadow_ray_epsilon;
+        j["seconds"] = {{"parse", f.seconds.parse}, {"ply", f.seconds.ply}, {"setup", f.seconds.setup},
+                        {"bvh", f.seconds.bvh},     {"render", r.render},   {"write", r.write}};
+        j["rays"] = {{"camera", rays.camera},
+                     {"shadow", rays.shadow},
+                     {"reflection", rays.reflection},
+                     {"refraction", rays.refraction},
+                     {"total", rays.total()}};
+        j["rays_per_second"] = r.render > 0 ? double(rays.total()) / r.render : 0.0;
+        j["bvh"] = {{"nodes", f.bvh_nodes},
+                    {"depth", f.bvh_depth},
+                    {"max_leaf", r.bvh.max_leaf},
+                    {"bins", r.bvh.bins},
+                    {"traversal_cost", r.bvh.traversal_cost},
+                    {"block", r.bvh.block},
+                    {"split", r.bvh.sah ? "sah" : "median"}};
+        j["peak_rss_bytes"] = r.peak_rss;
+        list.push_back(std::move(j));
+    }
+    doc["images"] = std::move(list);
+    return doc.dump(2) + "\n";
+}
+
 }  // namespace rt

@@ -1,0 +1,80 @@
+// What the raytracer command does, as a library function: each scene file is loaded,
+// built, rendered camera by camera and written, with the command's stderr messages, and
+// every image written gives one record (the figures --stats reports).
+#pragma once
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "rt/bvh.h"
+#include "rt/render.h"
+
+namespace rt {
+
+struct Scene;
+
+struct RunOptions {
+    std::string output_dir;    // relative ImageNames go under it (created); "": the current folder
+    RenderOptions render;      // threads, culling, rounding (the progress callback is set per image)
+    BvhBuildOptions bvh;       // BVH build knobs, for measurements
+    bool quiet = false;        // stderr: errors only
+    bool progress = true;      // a progress line while each image renders, when stderr is a terminal
+    int max_depth = -1;        // >= 0: overrides every scene's MaxRecursionDepth
+    double epsilon_scale = 1;  // multiplies every scene's ShadowRayEpsilon
+};
+
+// Seconds spent on a scene before its images render; shared by all its images.
+struct SceneTimes {
+    double parse = 0;  // reading and parsing the scene file, PLY files excluded
+    double ply = 0;    // reading PLY files
+    double setup = 0;  // render data: vertices copied, normals (build_scene without the BVH)
+    double bvh = 0;    // BVH build
+};
+
+// What a built scene holds, as the per-image summary line and --stats report it.
+struct SceneFigures {
+    size_t triangles = 0, spheres = 0, planes = 0, lights = 0;
+    size_t degenerate = 0;  // triangles skipped at build time
+    size_t bvh_nodes = 0;
+    int bvh_depth = 0;
+    int max_recursion_depth = 0;    // after --max-depth
+    double shadow_ray_epsilon = 0;  // after --epsilon-scale
+    SceneTimes seconds;
+};
+
+// The figures of one scene's settings and build; the one reader of rt::Scene's counts.
+SceneFigures scene_figures(const Scene& scene, const SceneTimes& seconds);
+
+// One image written.
+struct ImageRecord {
+    std::string scene, image;  // the scene file and the image written
+    size_t camera = 0;         // 1-based
+    int width = 0, height = 0;
+    SceneFigures figures;
+    double render = 0, write = 0;  // seconds
+    RenderStats render_stats;
+    bool cull = true;
+    BvhBuildOptions bvh;
+    uint64_t peak_rss = 0;  // bytes, of the whole process so far
+};
+
+struct RunReport {
+    bool ok = true;  // every scene loaded and every image written
+    std::vector<ImageRecord> images;
+};
+
+// Renders every camera of each scene file, in order; a failure stops only that scene
+// (bad input) or that image (an unwritable path). On stderr: warnings and one summary
+// line per image unless `quiet`, one line per error.
+RunReport run_scenes(const std::vector<std::string>& scene_paths, const RunOptions& options);
+
+// The --stats document: {"raytracer": version, "precision", "machine": {...}, "images": [...]}.
+std::string stats_json(const std::vector<ImageRecord>& images, const std::string& version);
+
+// Creates the missing folders above the file `path` (mkdir -p of its parent); an
+// existing one, folder or not, is left for the write to report. Throws InputError
+// "<path>: cannot create folder <folder>: <reason>".
+void make_parent_folders(const std::string& path);
+
+}  // namespace rt

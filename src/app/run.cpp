@@ -1,0 +1,177 @@
+// The raytracer command's pipeline: per scene file load -> build -> (per camera)
+// render -> write -> record. See rt/run.h.
+#include "rt/run.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <new>
+#include <optional>
+#include <string>
+#include <system_error>
+#include <utility>
+
+#include "progress.h"
+#include "rt/error.h"
+#include "rt/image.h"
+#include "rt/loader.h"
+#include "rt/scene.h"
+
+namespace rt {
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+// The measurement overrides (--max-depth, --epsilon-scale) applied to a built scene.
+void apply_overrides(Scene& scene, const RunOptions& o) {
+    if (o.max_depth >= 0) scene.max_recursion_depth = o.max_depth;
+    scene.shadow_ray_epsilon = static_cast<Real>(scene.shadow_ray_epsilon * o.epsilon_scale);
+}
+
+// A scene ready to render, with what the summary lines and records report of it.
+struct LoadedScene {
+    Scene scene;
+    SceneFigures figures;
+    double load_seconds = 0;  // parse + PLY + setup: the summary line's "load"
+};
+
+// Loads and builds one scene file; prints its warnings (unless quiet) and its error
+// line, and returns nothing on bad input. Every ImageName is checked before anything
+// is rendered: .png or .ppm.
+std::optional<LoadedScene> load(const std::string& scene_path, const RunOptions& o) {
+    const auto t0 = std::chrono::steady_clock::now();
+    try {
+        SceneDesc desc = load_scene(scene_path);
+        SceneTimes times;
+        times.ply = desc.ply_seconds;
+        times.parse = seconds_since(t0) - desc.ply_seconds;
+        if (!o.quiet)
+            for (const std::string& w : desc.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+        bool names_ok = true;
+        for (size_t c = 0; c < desc.cameras.size(); ++c) {
+            if (image_format_of(desc.cameras[c].image_name) != ImageFormat::Unknown) continue;
+            std::fprintf(stderr,
+                         "%s: camera %zu: ImageName '%s': unknown image format (the name must end in .png or .ppm)\n",
+                         scene_path.c_str(), c + 1, desc.cameras[c].image_name.c_str());
+            names_ok = false;
+        }
+        if (!names_ok) return std::nullopt;
+        const auto b0 = std::chrono::steady_clock::now();
+        LoadedScene s{build_scene(std::move(desc), o.bvh), {}, 0};
+        const double build_s = seconds_since(b0);
+        const double total_s = seconds_since(t0);
+        apply_overrides(s.scene, o);
+        s.figures = scene_figures(s.scene, times);
+        s.figures.seconds.setup = build_s - s.figures.seconds.bvh;
+        s.load_seconds = total_s - s.figures.seconds.bvh;
+        if (s.figures.degenerate > 0 && !o.quiet)
+            std::fprintf(stderr, "warning: %s: skipped %zu degenerate triangle%s\n", scene_path.c_str(),
+                         s.figures.degenerate, s.figures.degenerate > 1 ? "s" : "");
+        return std::optional<LoadedScene>(std::move(s));  // moved, never copied
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "%s\n", e.what());
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "%s: out of memory while loading\n", scene_path.c_str());
+    } catch (const std::exception& e) {
+        // Not expected (every bad input is an InputError); still one line, no crash.
+        std::fprintf(stderr, "%s: cannot load: %s\n", scene_path.c_str(), e.what());
+    }
+    return std::nullopt;
+}
+
+// Renders and writes camera `c` (0-based) of a loaded scene; returns its record.
+// Throws on failure (InputError for an unwritable path).
+ImageRecord render_camera(const std::string& scene_path, const LoadedScene& s, size_t c, const std::string& out,
+                          const RunOptions& o) {
+    const Camera& cam = s.scene.cameras[c];
+    make_parent_folders(out);
+    RenderOptions ropt = o.render;
+    app::ProgressLine progress(o.progress && !o.quiet && app::stderr_is_terminal());
+    if (progress.enabled()) {
+        progress.start(out);
+        ropt.progress = [&progress](int done, int total) { progress.update(done, total); };
+    }
+    ImageRecord r{scene_path, out, c + 1, cam.width, cam.height, s.figures, 0, 0, {}, o.render.cull, o.bvh, 0};
+    const auto r0 = std::chrono::steady_clock::now();
+    const Image img = render(s.scene, c, ropt, &r.render_stats);
+    r.render = seconds_since(r0);
+    progress.clear();
+    const auto w0 = std::chrono::steady_clock::now();
+    write_image(img, out);
+    r.write = seconds_since(w0);
+    if (!o.quiet)
+        std::fprintf(stderr,
+                     "%s: %dx%d, %zu triangles, %zu spheres, load %.3fs, bvh %.3fs, render %.3fs, write %.3fs\n",
+                     out.c_str(), cam.width, cam.height, s.figures.triangles, s.figures.spheres, s.load_seconds,
+                     s.figures.seconds.bvh, r.render, r.write);
+    r.peak_rss = app::peak_rss_bytes();
+    return r;
+}
+
+// Renders every camera of one scene file into `records`; returns false if anything failed.
+bool run_scene(const std::string& scene_path, const RunOptions& o, std::vector<ImageRecord>& records) {
+    const std::optional<LoadedScene> s = load(scene_path, o);
+    if (!s) return false;
+    bool ok = true;
+    for (size_t c = 0; c < s->scene.cameras.size(); ++c) {
+        std::string out = s->scene.cameras[c].image_name;
+        if (!o.output_dir.empty() && out[0] != '/') out = o.output_dir + "/" + out;
+        try {
+            records.push_back(render_camera(scene_path, *s, c, out, o));
+        } catch (const InputError& e) {
+            std::fprintf(stderr, "%s: camera %zu: %s\n", scene_path.c_str(), c + 1, e.what());
+            ok = false;
+        } catch (const std::bad_alloc&) {
+            std::fprintf(stderr, "%s: camera %zu: out of memory rendering %s\n", scene_path.c_str(), c + 1,
+                         out.c_str());
+            ok = false;
+        } catch (const std::exception& e) {
+            // E.g. std::system_error when no thread can be started.
+            std::fprintf(stderr, "%s: camera %zu: cannot render %s: %s\n", scene_path.c_str(), c + 1, out.c_str(),
+                         e.what());
+            ok = false;
+        }
+    }
+    return ok;
+}
+
+}  // namespace
+
+SceneFigures scene_figures(const Scene& scene, const SceneTimes& seconds) {
+    SceneFigures f;
+    f.triangles = scene.triangles.size();
+    f.spheres = scene.spheres.size();
+    f.planes = scene.planes.size();
+    f.lights = scene.lights.size();
+    f.degenerate = scene.degenerate_triangles;
+    f.bvh_nodes = scene.bvh.nodes.size();
+    f.bvh_depth = scene.bvh.depth;
+    f.max_recursion_depth = scene.max_recursion_depth;
+    f.shadow_ray_epsilon = double(scene.shadow_ray_epsilon);
+    f.seconds = seconds;
+    f.seconds.bvh = double(scene.build_seconds);
+    return f;
+}
+
+RunReport run_scenes(const std::vector<std::string>& scene_paths, const RunOptions& options) {
+    RunReport report;
+    for (const std::string& path : scene_paths) report.ok = run_scene(path, options, report.images) && report.ok;
+    return report;
+}
+
+void make_parent_folders(const std::string& path) {
+    // Folder by folder, as mkdir -p: one that exists already (or a file in its place,
+    // which the write then reports) is no error.
+    for (size_t pos = path.find('/', 1); pos != std::string::npos; pos = path.find('/', pos + 1)) {
+        const std::string dir = path.substr(0, pos);
+        std::error_code ec;
+        std::filesystem::create_directory(dir, ec);
+        if (ec && ec != std::errc::file_exists)
+            throw InputError(path + ": cannot create folder " + dir + ": " + ec.message());
+    }
+}
+
+}  // namespace rt
