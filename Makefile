@@ -8,7 +8,7 @@ CXXFLAGS ?= -O3 -march=native
 # functions evaluated exactly alike for both triangles sharing an edge, which
 # contraction breaks (rays slipped through the diagonal of simple.json's quad).
 CXXFLAGS += -ffp-contract=off
-CXXFLAGS += -std=c++17 -Wall -Wextra -Wpedantic -Wshadow -MMD -MP
+CXXFLAGS += -std=c++17 -Wall -Wextra -Wpedantic -Wshadow -Wswitch-enum -MMD -MP
 CPPFLAGS += -Iinclude
 LDLIBS   += -lpthread
 

@@ -201,14 +201,14 @@ bool run_scene(const std::string& scene_path, const Options& o) {
         if (!names_ok) return false;
         const auto b0 = std::chrono::steady_clock::now();
         scene = rt::build_scene(std::move(desc), o.bvh);
-        times.bvh = double(scene.build_seconds);
+        times.bvh = double(scene.report.build_seconds);
         times.setup = seconds_since(b0) - times.bvh;
-        load_s = seconds_since(t0) - scene.build_seconds;
-        if (o.max_depth >= 0) scene.max_recursion_depth = o.max_depth;
-        scene.shadow_ray_epsilon = static_cast<rt::Real>(scene.shadow_ray_epsilon * o.epsilon_scale);
-        if (scene.degenerate_triangles > 0 && !o.quiet)
+        load_s = seconds_since(t0) - scene.report.build_seconds;
+        if (o.max_depth >= 0) scene.setup.max_recursion_depth = o.max_depth;
+        scene.setup.shadow_ray_epsilon = static_cast<rt::Real>(scene.setup.shadow_ray_epsilon * o.epsilon_scale);
+        if (scene.report.degenerate_triangles > 0 && !o.quiet)
             std::fprintf(stderr, "warning: %s: skipped %zu degenerate triangle%s\n", scene_path.c_str(),
-                         scene.degenerate_triangles, scene.degenerate_triangles > 1 ? "s" : "");
+                         scene.report.degenerate_triangles, scene.report.degenerate_triangles > 1 ? "s" : "");
     } catch (const rt::InputError& e) {
         std::fprintf(stderr, "%s\n", e.what());
         return false;
@@ -222,8 +222,8 @@ bool run_scene(const std::string& scene_path, const Options& o) {
     }
 
     bool ok = true;
-    for (size_t c = 0; c < scene.cameras.size(); ++c) {
-        const rt::Camera& cam = scene.cameras[c];
+    for (size_t c = 0; c < scene.setup.cameras.size(); ++c) {
+        const rt::Camera& cam = scene.setup.cameras[c];
         std::string out = cam.image_name;
         if (!o.output_dir.empty() && out[0] != '/') out = o.output_dir + "/" + out;
         try {
@@ -244,8 +244,8 @@ bool run_scene(const std::string& scene_path, const Options& o) {
             const double write_s = seconds_since(w0);
             if (!o.quiet)
                 std::fprintf(stderr, "%s: %dx%d, %zu triangles, %zu spheres, load %.3fs, bvh %.3fs, render %.3fs, write %.3fs\n",
-                             out.c_str(), cam.width, cam.height, scene.triangles.size(), scene.spheres.size(), load_s,
-                             double(scene.build_seconds), render_s, write_s);
+                             out.c_str(), cam.width, cam.height, scene.geometry.triangles.size(), scene.geometry.spheres.size(), load_s,
+                             double(scene.report.build_seconds), render_s, write_s);
             if (!o.stats_path.empty()) {
                 rt::cli::ImageRecord r;
                 r.scene = scene_path;
@@ -253,20 +253,20 @@ bool run_scene(const std::string& scene_path, const Options& o) {
                 r.camera = c + 1;
                 r.width = cam.width;
                 r.height = cam.height;
-                r.triangles = scene.triangles.size();
-                r.spheres = scene.spheres.size();
-                r.planes = scene.planes.size();
-                r.lights = scene.lights.size();
-                r.degenerate = scene.degenerate_triangles;
+                r.triangles = scene.geometry.triangles.size();
+                r.spheres = scene.geometry.spheres.size();
+                r.planes = scene.geometry.planes.size();
+                r.lights = scene.setup.lights.size();
+                r.degenerate = scene.report.degenerate_triangles;
                 r.times = times;
                 r.render = render_s;
                 r.write = write_s;
                 r.render_stats = rstats;
                 r.cull = o.render.cull;
-                r.max_recursion_depth = scene.max_recursion_depth;
-                r.shadow_ray_epsilon = double(scene.shadow_ray_epsilon);
-                r.bvh_nodes = scene.bvh.nodes.size();
-                r.bvh_depth = scene.bvh.depth;
+                r.max_recursion_depth = scene.setup.max_recursion_depth;
+                r.shadow_ray_epsilon = double(scene.setup.shadow_ray_epsilon);
+                r.bvh_nodes = scene.accel.bvh.nodes.size();
+                r.bvh_depth = scene.accel.bvh.depth;
                 r.bvh = o.bvh;
                 r.peak_rss = rt::cli::peak_rss_bytes();
                 g_stats.push_back(std::move(r));

@@ -41,8 +41,12 @@ const char* type_name(const json& v) {
         case json::value_t::string: return "a string";
         case json::value_t::boolean: return "a boolean";
         case json::value_t::discarded: return "nothing";
-        default: return "a number";
+        case json::value_t::number_integer:
+        case json::value_t::number_unsigned:
+        case json::value_t::number_float: return "a number";
+        case json::value_t::binary: return "binary data";  // never parsed from text
     }
+    return "a number";
 }
 
 
@@ -364,7 +368,7 @@ private:
                 if (!(length(d.gaze) > 0)) fail(gaze_path, "GazePoint must differ from Position");
                 const Real fovy = real(require(c, cp, "FovY"), cp + "/FovY");
                 if (!(fovy > 0 && fovy < 180)) fail(cp + "/FovY", "must be between 0 and 180 degrees");
-                const Real pi = Real(3.14159265358979323846);
+                const Real pi = kPi;
                 d.top = d.near_distance * std::tan(fovy * pi / 360);
                 d.bottom = -d.top;
                 d.right = d.top * Real(d.width) / Real(d.height);
