@@ -136,10 +136,8 @@ UninitVector<BuildBox> primitive_boxes(const Geometry& g) {
 
 namespace {
 
-// x is a float exactly. Out of line on purpose: GCC 12 at -O2, given three such
-// (double)(float) round trips side by side, vectorised them and dropped two
-// (seen on `v = {double(float(v.x)), double(float(v.y)), double(float(v.z))}`).
-[[gnu::noinline]] bool is_float(Real x) { return Real(float(x)) == x; }
+// x is a float exactly.
+inline bool is_float(Real x) { return Real(float(x)) == x; }
 
 // Floats in the leaf-order vertices of n triangles.
 constexpr size_t leaf_floats(size_t n) { return 9 * n; }
