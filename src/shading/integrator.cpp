@@ -106,7 +106,7 @@ struct Integrator {
         if (depth < s.setup.max_recursion_depth) {
             const Real eps = s.setup.shadow_ray_epsilon;
             const Real cos_i = -dot(ray.dir, nf);
-            // The mirror direction.
+            // The reflected ray, spawned on the side the incoming ray came from.
             auto reflected = [&] { return spawn_ray(p, nf, eps, normalize(ray.dir + nf * (2 * cos_i))); };
             // Adds factor * L(r) unless the ray's weight is negligible (kMinWeight).
             auto secondary = [&](Vec3 factor, const Ray& r, int r_medium, uint64_t& counter) {
@@ -116,33 +116,35 @@ struct Integrator {
                 color += factor * trace(r, depth + 1, r_medium, false, w);
             };
             switch (m.type) {
-            case MaterialType::Plain:  // no secondary rays; MirrorReflectance is ignored
-                break;
-            case MaterialType::Mirror:
-                secondary(m.mirror, reflected(), kNoMedium, rays.reflection);
-                break;
-            case MaterialType::Conductor: {
-                const Real fr = fresnel_conductor(cos_i, m.refraction_index, m.absorption_index);
-                secondary(m.mirror * fr, reflected(), kNoMedium, rays.reflection);
-                break;
-            }
-            case MaterialType::Dielectric: {
-                const int self = static_cast<int>(mat_id);
-                const Real eta_i = front ? Real(1) : m.refraction_index;
-                const Real eta_t = front ? m.refraction_index : Real(1);
-                Real cos_t = 0;
-                const Real fr = fresnel_dielectric(cos_i, eta_i, eta_t, &cos_t);
-                // Inside this dielectric: the ray reflected off its inside, or refracted in.
-                const int refl_medium = front ? kNoMedium : self;
-                const int refr_medium = front ? self : kNoMedium;
-                secondary(m.mirror * fr, reflected(), refl_medium, rays.reflection);
-                if (fr < 1) {
-                    const Real eta = eta_i / eta_t;
-                    const Vec3 t_dir = normalize(ray.dir * eta + nf * (eta * cos_i - cos_t));
-                    secondary(Vec3{1, 1, 1} * (1 - fr), spawn_ray(p, -nf, eps, t_dir), refr_medium, rays.refraction);
+                case MaterialType::Plain:
+                    // No secondary rays: MirrorReflectance on a material without _type is
+                    // ignored (reference-conventions.md, "Shading"; the akif_uslu scenes carry it).
+                    break;
+                case MaterialType::Mirror:
+                    secondary(m.mirror, reflected(), kNoMedium, rays.reflection);
+                    break;
+                case MaterialType::Conductor: {
+                    const Real fr = fresnel_conductor(cos_i, m.refraction_index, m.absorption_index);
+                    secondary(m.mirror * fr, reflected(), kNoMedium, rays.reflection);
+                    break;
                 }
-                break;
-            }
+                case MaterialType::Dielectric: {
+                    const int self = static_cast<int>(mat_id);
+                    const Real eta_i = front ? Real(1) : m.refraction_index;
+                    const Real eta_t = front ? m.refraction_index : Real(1);
+                    Real cos_t = 0;
+                    const Real fr = fresnel_dielectric(cos_i, eta_i, eta_t, &cos_t);
+                    // Inside this dielectric: the ray reflected off its inside, or refracted in.
+                    const int refl_medium = front ? kNoMedium : self;
+                    const int refr_medium = front ? self : kNoMedium;
+                    secondary(m.mirror * fr, reflected(), refl_medium, rays.reflection);
+                    if (fr < 1) {
+                        const Real eta = eta_i / eta_t;
+                        const Vec3 t_dir = normalize(ray.dir * eta + nf * (eta * cos_i - cos_t));
+                        secondary(Vec3{1, 1, 1} * (1 - fr), spawn_ray(p, -nf, eps, t_dir), refr_medium, rays.refraction);
+                    }
+                    break;
+                }
             }
         }
         if (medium != kNoMedium) color = color * beer;
