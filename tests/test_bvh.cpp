@@ -53,21 +53,22 @@ struct Answer {
 
 uint32_t global_id(const rt::Scene& s, const rt::Hit& h) {
     switch (h.kind) {
-        case rt::HitKind::Triangle: return h.index;
-        case rt::HitKind::Sphere: return static_cast<uint32_t>(s.triangles.size()) + h.index;
-        default: return static_cast<uint32_t>(s.triangles.size() + s.spheres.size()) + h.index;
+        case rt::ShapeKind::Triangle: return h.index;
+        case rt::ShapeKind::Sphere: return static_cast<uint32_t>(s.geometry.triangles.size()) + h.index;
+        case rt::ShapeKind::Plane: return static_cast<uint32_t>(s.geometry.triangles.size() + s.geometry.spheres.size()) + h.index;
     }
+    return ~0u;
 }
 
 Answer brute_closest(const rt::Scene& s, const rt::Ray& r, Real tmin, Real tmax, bool cull) {
     Answer a;
     const rt::RayPre p = rt::prepare(r);
     uint32_t gid = 0;
-    for (size_t i = 0; i < s.triangles.size(); ++i, ++gid) {
-        if (cull && rt::dot(r.dir, s.face_normal(static_cast<uint32_t>(i))) > 0) continue;
-        const rt::Triangle& tri = s.triangles[i];
+    for (size_t i = 0; i < s.geometry.triangles.size(); ++i, ++gid) {
+        if (cull && rt::dot(r.dir, s.geometry.face_normal(static_cast<uint32_t>(i))) > 0) continue;
+        const rt::Triangle& tri = s.geometry.triangles[i];
         Real t, w[3];
-        if (rt::intersect_triangle(p, s.positions[tri.v[0]], s.positions[tri.v[1]], s.positions[tri.v[2]], tmin, tmax,
+        if (rt::intersect_triangle(p, s.geometry.positions[tri.v[0]], s.geometry.positions[tri.v[1]], s.geometry.positions[tri.v[2]], tmin, tmax,
                                    t, w) &&
             t < a.t) {
             a.found = true;
@@ -76,17 +77,17 @@ Answer brute_closest(const rt::Scene& s, const rt::Ray& r, Real tmin, Real tmax,
             std::copy(w, w + 3, a.w);
         }
     }
-    for (size_t i = 0; i < s.spheres.size(); ++i, ++gid) {
+    for (size_t i = 0; i < s.geometry.spheres.size(); ++i, ++gid) {
         Real t;
-        if (rt::intersect_sphere(r, s.spheres[i].center, s.spheres[i].radius, tmin, tmax, t) && t < a.t) {
+        if (rt::intersect_sphere(r, s.geometry.spheres[i].center, s.geometry.spheres[i].radius, tmin, tmax, t) && t < a.t) {
             a.found = true;
             a.t = t;
             a.gid = gid;
         }
     }
-    for (size_t i = 0; i < s.planes.size(); ++i, ++gid) {
+    for (size_t i = 0; i < s.geometry.planes.size(); ++i, ++gid) {
         Real t;
-        if (rt::intersect_plane(r, s.planes[i].point, s.planes[i].normal, tmin, tmax, t) && t < a.t) {
+        if (rt::intersect_plane(r, s.geometry.planes[i].point, s.geometry.planes[i].normal, tmin, tmax, t) && t < a.t) {
             a.found = true;
             a.t = t;
             a.gid = gid;
@@ -98,13 +99,13 @@ Answer brute_closest(const rt::Scene& s, const rt::Ray& r, Real tmin, Real tmax,
 bool brute_any(const rt::Scene& s, const rt::Ray& r, Real tmin, Real tmax) {
     const rt::RayPre p = rt::prepare(r);
     Real t, w[3];
-    for (const rt::Triangle& tri : s.triangles)
-        if (rt::intersect_triangle(p, s.positions[tri.v[0]], s.positions[tri.v[1]], s.positions[tri.v[2]], tmin, tmax,
+    for (const rt::Triangle& tri : s.geometry.triangles)
+        if (rt::intersect_triangle(p, s.geometry.positions[tri.v[0]], s.geometry.positions[tri.v[1]], s.geometry.positions[tri.v[2]], tmin, tmax,
                                    t, w))
             return true;
-    for (const rt::Sphere& sp : s.spheres)
+    for (const rt::Sphere& sp : s.geometry.spheres)
         if (rt::intersect_sphere(r, sp.center, sp.radius, tmin, tmax, t)) return true;
-    for (const rt::Plane& pl : s.planes)
+    for (const rt::Plane& pl : s.geometry.planes)
         if (rt::intersect_plane(r, pl.point, pl.normal, tmin, tmax, t)) return true;
     return false;
 }
@@ -152,7 +153,7 @@ struct Checker {
                 fail(o.str());
                 continue;
             }
-            if (got.kind == rt::HitKind::Triangle &&
+            if (got.kind == rt::ShapeKind::Triangle &&
                 (got.w[0] != want.w[0] || got.w[1] != want.w[1] || got.w[2] != want.w[2]))
                 fail(describe(r, tmin, tmax) + ": barycentric weights differ");
         }
@@ -169,21 +170,28 @@ struct Checker {
 
 // --- structure -----------------------------------------------------------------------
 
-rt::Aabb prim_bounds(const rt::Scene& s, uint32_t id) {
-    rt::Aabb b;
-    if (id < s.triangles.size()) {
-        for (uint32_t v : s.triangles[id].v) b.extend(s.positions[v]);
+// The smallest float box around Real points (a float bound below or above a Real
+// coordinate is also one below or above this box's).
+struct PointBox {
+    rt::Box box;
+    void extend(Vec3 p) { box.extend(rt::Box::around(p, p)); }
+};
+
+rt::Box prim_bounds(const rt::Scene& s, uint32_t id) {
+    PointBox b;
+    if (id < s.geometry.triangles.size()) {
+        for (uint32_t v : s.geometry.triangles[id].v) b.extend(s.geometry.positions[v]);
     } else {
-        const rt::Sphere& sp = s.spheres[id - s.triangles.size()];
+        const rt::Sphere& sp = s.geometry.spheres[id - s.geometry.triangles.size()];
         b.extend(sp.center - Vec3{sp.radius, sp.radius, sp.radius});
         b.extend(sp.center + Vec3{sp.radius, sp.radius, sp.radius});
     }
-    return b;
+    return b.box;
 }
 
 void check_structure(const rt::Scene& s) {
-    const rt::Bvh& bvh = s.bvh;
-    const size_t n = s.triangles.size() + s.spheres.size();
+    const rt::Bvh& bvh = s.accel.bvh;
+    const size_t n = s.geometry.triangles.size() + s.geometry.spheres.size();
     ASSERT_EQ(bvh.prims.size(), n);
     if (n == 0) {
         EXPECT_TRUE(bvh.nodes.empty());
@@ -230,7 +238,7 @@ void check_structure(const rt::Scene& s) {
                 ASSERT_LE(size_t(first) + nd.count[k], n);
                 for (uint32_t i = first; i < first + nd.count[k]; ++i) {
                     ++covered[i];
-                    const rt::Aabb b = prim_bounds(s, bvh.prims[i]);
+                    const rt::Box b = prim_bounds(s, bvh.prims[i]);
                     for (int a = 0; a < 3; ++a)
                         if (!(Real(nd.lo[a][k]) <= b.lo[a] && b.hi[a] <= Real(nd.hi[a][k]))) ++bad_boxes;
                 }
@@ -366,14 +374,14 @@ void shoot(const rt::Scene& s, Checker& ck, Rng& rng, int rays, Real extent) {
         // when there are no triangles); 4: at a sphere's surface (a triangle when there are no
         // spheres); 5: axis-aligned.
         int mode = k % 6;
-        if (s.triangles.empty() && s.spheres.empty()) mode = (mode == 5) ? 5 : 0;
-        else if (mode >= 1 && mode <= 3 && s.triangles.empty()) mode = 4;
-        else if (mode == 4 && s.spheres.empty()) mode = 3;
+        if (s.geometry.triangles.empty() && s.geometry.spheres.empty()) mode = (mode == 5) ? 5 : 0;
+        else if (mode >= 1 && mode <= 3 && s.geometry.triangles.empty()) mode = 4;
+        else if (mode == 4 && s.geometry.spheres.empty()) mode = 3;
         if (mode == 0) {
             dir = random_unit(rng);
         } else if (mode <= 3) {
-            const rt::Triangle& tri = s.triangles[pick(rng, s.triangles.size())];
-            const Vec3 a = s.positions[tri.v[0]], b = s.positions[tri.v[1]], c = s.positions[tri.v[2]];
+            const rt::Triangle& tri = s.geometry.triangles[pick(rng, s.geometry.triangles.size())];
+            const Vec3 a = s.geometry.positions[tri.v[0]], b = s.geometry.positions[tri.v[1]], c = s.geometry.positions[tri.v[2]];
             Vec3 target;
             if (mode == 1) {
                 target = (rng() % 2) ? a : b;  // vertex
@@ -386,7 +394,7 @@ void shoot(const rt::Scene& s, Checker& ck, Rng& rng, int rays, Real extent) {
             }
             dir = target - org;
         } else if (mode == 4) {
-            const rt::Sphere& sp = s.spheres[pick(rng, s.spheres.size())];
+            const rt::Sphere& sp = s.geometry.spheres[pick(rng, s.geometry.spheres.size())];
             dir = sp.center + random_unit(rng) * sp.radius - org;
         } else {
             // Axis-aligned (two zero components; sometimes negative zeros).
@@ -406,9 +414,9 @@ void shoot(const rt::Scene& s, Checker& ck, Rng& rng, int rays, Real extent) {
         ck.any(r, 0, HUGE_VAL);
         ck.any(r, tmin, tmax);
         // Shadow-ray style: from a surface point towards a random point, the interval ending there.
-        if (!s.triangles.empty() && k % 2 == 0) {
-            const rt::Triangle& tri = s.triangles[pick(rng, s.triangles.size())];
-            const Vec3 p = (s.positions[tri.v[0]] + s.positions[tri.v[1]] + s.positions[tri.v[2]]) / Real(3);
+        if (!s.geometry.triangles.empty() && k % 2 == 0) {
+            const rt::Triangle& tri = s.geometry.triangles[pick(rng, s.geometry.triangles.size())];
+            const Vec3 p = (s.geometry.positions[tri.v[0]] + s.geometry.positions[tri.v[1]] + s.geometry.positions[tri.v[2]]) / Real(3);
             const Vec3 to = org - p;
             const Real d = rt::length(to);
             if (d > 0) ck.any({p, to / d}, Real(1e-3), d);
@@ -421,7 +429,7 @@ void shoot(const rt::Scene& s, Checker& ck, Rng& rng, int rays, Real extent) {
 [[gnu::noinline]] Real to_float(Real x) { return Real(float(x)); }
 
 // float_vertices: the mesh's positions rounded to float, as a PLY mesh's are, so
-// that leaves read them from Scene::leaf_vertices() (when there are no spheres).
+// that leaves read them from Acceleration::leaf_vertices (when there are no spheres).
 void run_soup(const SoupSpec& spec, int rays, bool float_vertices = false) {
     SCOPED_TRACE("seed " + std::to_string(spec.seed) + ", " + std::to_string(spec.triangles) + " triangles, " +
                  std::to_string(spec.spheres) + " spheres" + (float_vertices ? ", float vertices" : ""));
@@ -433,19 +441,19 @@ void run_soup(const SoupSpec& spec, int rays, bool float_vertices = false) {
     const rt::Scene s = rt::build_scene(std::move(d));
     check_structure(s);
     // The leaf-order copy exists exactly when it changes no number (scene.h).
-    const bool want_copy = float_vertices && rt::kLeafBlock > 1 && s.spheres.empty() && !s.triangles.empty();
-    EXPECT_EQ(s.leaf_vertices() != nullptr, want_copy);
+    const bool want_copy = float_vertices && rt::kLeafBlock > 1 && s.geometry.spheres.empty() && !s.geometry.triangles.empty();
+    EXPECT_EQ(s.accel.leaf_vertices.data() != nullptr, want_copy);
     if (want_copy) {  // the copy holds each leaf triangle's vertices
-        ASSERT_GE(s.leaf_storage.size() * sizeof(rt::BuildBox), s.bvh.prims.size() * 9 * sizeof(float));
-        const size_t i = s.bvh.prims.size() - 1;
-        const rt::Triangle& t = s.triangles[s.bvh.prims[i]];
-        EXPECT_EQ(Real(s.leaf_vertices()[9 * i + 8]), s.positions[t.v[2]].z);
+        ASSERT_GE(s.accel.leaf_vertices.triangles() * 9 * sizeof(float), s.accel.bvh.prims.size() * 9 * sizeof(float));
+        const size_t i = s.accel.bvh.prims.size() - 1;
+        const rt::Triangle& t = s.geometry.triangles[s.accel.bvh.prims[i]];
+        EXPECT_EQ(Real(s.accel.leaf_vertices.data()[9 * i + 8]), s.geometry.positions[t.v[2]].z);
     }
     Checker ck{s};
     shoot(s, ck, rng, rays, spec.extent);
     EXPECT_EQ(ck.mismatches, 0) << "of " << ck.queries << " queries";
     // The rays must actually hit things, or the comparison says little.
-    if (!s.triangles.empty() || !s.spheres.empty()) {
+    if (!s.geometry.triangles.empty() || !s.geometry.spheres.empty()) {
         EXPECT_GT(ck.hits, ck.closest_queries / 20);
     }
 }
@@ -503,19 +511,19 @@ TEST(BvhProperty, AllCoincident) {
     for (int i = 0; i < 500; ++i) d.spheres.push_back({0, {0, 0, 5}, 1});
     const rt::Scene s = rt::build_scene(d);
     check_structure(s);
-    EXPECT_LE(s.bvh.depth, 64);
+    EXPECT_LE(s.accel.bvh.depth, 64);
     rt::Hit h;
     ASSERT_TRUE(rt::closest_hit(s, {{0, 0, -5}, {0, 0, 1}}, 0, HUGE_VAL, false, h));
-    EXPECT_EQ(h.kind, rt::HitKind::Triangle);
+    EXPECT_EQ(h.kind, rt::ShapeKind::Triangle);
     EXPECT_EQ(h.index, 0u) << "ties go to the lowest id";
     EXPECT_EQ(h.t, 5);
     ASSERT_TRUE(rt::closest_hit(s, {{0, 0, 10}, {0, 0, -1}}, 0, HUGE_VAL, false, h));
-    EXPECT_EQ(h.kind, rt::HitKind::Sphere);
+    EXPECT_EQ(h.kind, rt::ShapeKind::Sphere);
     EXPECT_EQ(h.index, 0u) << "ties go to the lowest id";
     EXPECT_EQ(h.t, 4);
     // With culling the triangle seen from below (normal +z, ray going +z) is skipped: sphere.
     ASSERT_TRUE(rt::closest_hit(s, {{0, 0, -5}, {0, 0, 1}}, 0, HUGE_VAL, true, h));
-    EXPECT_EQ(h.kind, rt::HitKind::Sphere);
+    EXPECT_EQ(h.kind, rt::ShapeKind::Sphere);
     EXPECT_EQ(h.index, 0u);
     Rng rng(5);
     Checker ck{s};
@@ -539,21 +547,21 @@ TEST(BvhProperty, TiesAcrossKinds) {
     {
         const rt::Scene s = rt::build_scene(d);
         ASSERT_TRUE(rt::closest_hit(s, r, 0, HUGE_VAL, false, h));
-        EXPECT_EQ(h.kind, rt::HitKind::Triangle);
+        EXPECT_EQ(h.kind, rt::ShapeKind::Triangle);
         EXPECT_EQ(h.t, 5);
     }
     d.meshes.clear();
     {
         const rt::Scene s = rt::build_scene(d);
         ASSERT_TRUE(rt::closest_hit(s, r, 0, HUGE_VAL, false, h));
-        EXPECT_EQ(h.kind, rt::HitKind::Sphere);
+        EXPECT_EQ(h.kind, rt::ShapeKind::Sphere);
         EXPECT_EQ(h.t, 5);
     }
     d.spheres.clear();
     {
         const rt::Scene s = rt::build_scene(d);
         ASSERT_TRUE(rt::closest_hit(s, r, 0, HUGE_VAL, false, h));
-        EXPECT_EQ(h.kind, rt::HitKind::Plane);
+        EXPECT_EQ(h.kind, rt::ShapeKind::Plane);
         EXPECT_EQ(h.t, 5);
     }
 }
@@ -569,8 +577,8 @@ TEST(BvhProperty, DegenerateTrianglesAreDroppedAndCounted) {
                  2, 2, 2};  // a point
     d.meshes.push_back(m);
     const rt::Scene s = rt::build_scene(d);
-    EXPECT_EQ(s.triangles.size(), 1u);
-    EXPECT_EQ(s.degenerate_triangles, 3u);
+    EXPECT_EQ(s.geometry.triangles.size(), 1u);
+    EXPECT_EQ(s.report.degenerate_triangles, 3u);
     check_structure(s);
 }
 
@@ -636,30 +644,33 @@ void check_official(const std::string& rel, int rays, size_t min_triangles) {
     if (::stat(path.c_str(), &st) != 0)
         GTEST_SKIP() << "*** SKIPPED: " << path << " is missing ***";
     const rt::Scene s = rt::build_scene(rt::load_scene(path));
-    ASSERT_GE(s.triangles.size(), min_triangles) << path;
+    ASSERT_GE(s.geometry.triangles.size(), min_triangles) << path;
     check_structure(s);
 
     Rng rng(99);
     Checker ck{s};
     // Scene bounds, from the mesh vertices.
-    rt::Aabb box;
-    for (const Vec3& p : s.positions) box.extend(p);
-    const Vec3 lo = box.lo, hi = box.hi, size = hi - lo;
+    Vec3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi = -lo;
+    for (const Vec3& p : s.geometry.positions) {
+        lo = rt::vmin(lo, p);
+        hi = rt::vmax(hi, p);
+    }
+    const Vec3 size = hi - lo;
     for (int k = 0; k < rays; ++k) {
         rt::Ray r;
         if (k % 3 == 0) {
             // Camera rays through random pixels.
-            const rt::Camera& cam = s.cameras[pick(rng, s.cameras.size())];
+            const rt::Camera& cam = s.setup.cameras[pick(rng, s.setup.cameras.size())];
             r = cam.primary_ray(static_cast<int>(pick(rng, size_t(cam.width))), static_cast<int>(pick(rng, size_t(cam.height))));
         } else {
             const Vec3 org{lo.x + size.x * uniform(rng, -0.5, 1.5), lo.y + size.y * uniform(rng, -0.5, 1.5),
                            lo.z + size.z * uniform(rng, -0.5, 1.5)};
             Vec3 target;
             if (k % 3 == 1) {
-                target = s.positions[pick(rng, s.positions.size())];  // through a vertex
+                target = s.geometry.positions[pick(rng, s.geometry.positions.size())];  // through a vertex
             } else {
-                const rt::Triangle& tri = s.triangles[pick(rng, s.triangles.size())];
-                const Vec3 a = s.positions[tri.v[0]], b = s.positions[tri.v[1]];
+                const rt::Triangle& tri = s.geometry.triangles[pick(rng, s.geometry.triangles.size())];
+                const Vec3 a = s.geometry.positions[tri.v[0]], b = s.geometry.positions[tri.v[1]];
                 target = a + (b - a) * uniform(rng, 0, 1);  // through an edge
             }
             const Vec3 d = target - org;

@@ -725,7 +725,7 @@ TEST(OwnScenes, EveryOneLoadsAndRenders) {
             c.height = std::max(1, c.height * 40 / longest);
         }
         const rt::Scene s = rt::build_scene(d);
-        EXPECT_EQ(s.degenerate_triangles, 0u);
+        EXPECT_EQ(s.report.degenerate_triangles, 0u);
         const rt::Image img = rt::render(s, 0, rt::RenderOptions{});
         EXPECT_GT(*std::max_element(img.rgb.begin(), img.rgb.end()), 100);
     }

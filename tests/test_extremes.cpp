@@ -38,6 +38,7 @@
 #include "rt/render.h"
 #include "rt/scene.h"
 #include "rt/shading.h"
+#include "rt/threads.h"
 #include "test_support.h"
 
 using json = nlohmann::ordered_json;
@@ -160,7 +161,7 @@ struct Counted {
 
 // Like rt::render, but every pixel's radiance is checked before quantisation.
 Counted render_counted(const rt::Scene& s, size_t cam_index, bool cull = true, int threads = 2) {
-    const rt::Camera& cam = s.cameras.at(cam_index);
+    const rt::Camera& cam = s.setup.cameras.at(cam_index);
     Counted out;
     out.img.width = cam.width;
     out.img.height = cam.height;
@@ -184,10 +185,11 @@ Counted render_counted(const rt::Scene& s, size_t cam_index, bool cull = true, i
             }
         }
     };
-    std::vector<std::thread> pool;
-    for (int i = 1; i < threads; ++i) pool.emplace_back(work);
-    work();
-    for (std::thread& t : pool) t.join();
+    {
+        std::vector<rt::HelperThread> pool;
+        for (int i = 1; i < threads; ++i) pool.emplace_back(work);
+        work();
+    }  // joined
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     out.nonfinite = nonfinite;
     out.nan = nan;
@@ -493,16 +495,16 @@ TEST(ExtremesWatertight, DenseGridAtGrazingAndHeadOnAngles) {
     const double dist = 4;
     int id = 1;
     for (const View& vw : views) {
-        const double el = vw.elevation_deg * M_PI / 180, az = vw.azimuth_deg * M_PI / 180;
+        const double el = vw.elevation_deg * rt::pi_v<double> / 180, az = vw.azimuth_deg * rt::pi_v<double> / 180;
         const V3 pos = {dist * std::cos(el) * std::sin(az), dist * std::sin(el), dist * std::cos(el) * std::cos(az)};
         const V3 up = vw.elevation_deg == 90 ? V3{0, 0, -1} : V3{0, 1, 0};
         j["Scene"]["Cameras"]["Camera"].push_back(framing_camera(pos, up, 128, id++));
     }
     const rt::Scene s = build(j);
-    ASSERT_EQ(s.triangles.size(), size_t(2 * n * n));
+    ASSERT_EQ(s.geometry.triangles.size(), size_t(2 * n * n));
     const rt::TraceOptions opt{true};
-    for (size_t c = 0; c < s.cameras.size(); ++c) {
-        const rt::Camera& cam = s.cameras[c];
+    for (size_t c = 0; c < s.setup.cameras.size(); ++c) {
+        const rt::Camera& cam = s.setup.cameras[c];
         long inside = 0, holes = 0, nonfinite = 0;
         for (int y = 0; y < cam.height; ++y)
             for (int x = 0; x < cam.width; ++x) {
@@ -516,7 +518,7 @@ TEST(ExtremesWatertight, DenseGridAtGrazingAndHeadOnAngles) {
                 ++inside;
                 const rt::Vec3 col = rt::trace_primary(s, ray, opt);
                 if (!rt::isfinite(col)) ++nonfinite;
-                if (col.x == s.background.x && col.y == s.background.y && col.z == s.background.z) ++holes;
+                if (col.x == s.setup.background.x && col.y == s.setup.background.y && col.z == s.setup.background.z) ++holes;
             }
         std::printf("[extremes] watertight grid, elevation %5g deg azimuth %3g deg: %6ld pixels inside the grid, "
                     "%ld show the background, non-finite %ld\n",
@@ -572,7 +574,7 @@ TEST(ExtremesWatertight, RaysThroughVerticesAndAlongEdges) {
         j["Scene"]["Cameras"]["Camera"].push_back(c);
     }
     const rt::Scene s = build(j);
-    for (size_t c = 0; c < s.cameras.size(); ++c) {
+    for (size_t c = 0; c < s.setup.cameras.size(); ++c) {
         const Counted r = render_counted(s, c);
         long holes = 0, inside = 0;
         // The outermost ring of pixels sits exactly on the grid's outer boundary; skip it.
@@ -672,12 +674,12 @@ TEST(ExtremesGlass, IndexOneGlassIsInvisible) {
 
     const rt::Scene s_with = build(with);
     // The box's faces must face outward for the test to mean anything.
-    for (size_t t = 0; t < s_with.triangles.size(); ++t) {
-        if (s_with.triangles[t].material != 2) continue;
-        const rt::Vec3 c = (s_with.positions[s_with.triangles[t].v[0]] + s_with.positions[s_with.triangles[t].v[1]] +
-                            s_with.positions[s_with.triangles[t].v[2]]) / 3;
+    for (size_t t = 0; t < s_with.geometry.triangles.size(); ++t) {
+        if (s_with.geometry.triangles[t].material != 2) continue;
+        const rt::Vec3 c = (s_with.geometry.positions[s_with.geometry.triangles[t].v[0]] + s_with.geometry.positions[s_with.geometry.triangles[t].v[1]] +
+                            s_with.geometry.positions[s_with.geometry.triangles[t].v[2]]) / 3;
         const rt::Vec3 centre{0.8, -0.8, -3};
-        ASSERT_GT(rt::dot(s_with.face_normal(uint32_t(t)), c - centre), 0) << "box triangle " << t << " faces inward";
+        ASSERT_GT(rt::dot(s_with.geometry.face_normal(uint32_t(t)), c - centre), 0) << "box triangle " << t << " faces inward";
     }
     const Counted a = render_counted(build(without), 0);
     const Counted b = render_counted(s_with, 0);
@@ -916,8 +918,8 @@ TEST(ExtremesFinite, DegenerateAndNeedleTriangles) {
     j["Scene"]["Objects"]["Mesh"][0]["Faces"]["_data"] = faces;
     j["Scene"]["Objects"]["Mesh"][1]["Faces"]["_data"] = faces;
     const rt::Scene s = build(j);
-    std::printf("[extremes] needle scene: %zu triangles kept, %zu degenerate skipped\n", s.triangles.size(),
-                s.degenerate_triangles);
+    std::printf("[extremes] needle scene: %zu triangles kept, %zu degenerate skipped\n", s.geometry.triangles.size(),
+                s.report.degenerate_triangles);
     for (bool cull : {true, false}) {
         const Counted r = render_counted(s, 0, cull);
         report(std::string("degenerate and needle triangles, cull ") + (cull ? "on" : "off"), r);

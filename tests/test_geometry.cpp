@@ -57,8 +57,8 @@ TEST(GeometryCamera, SimpleCameraCentreAndCorners) {
     const rt::Scene s = camera_scene(R"({
         "_id": "1", "Position": "0 0 0", "Gaze": "0 0 -1", "Up": "0 1 0",
         "NearPlane": "-1 1 -1 1", "NearDistance": "1", "ImageResolution": "3 3", "ImageName": "a.png"})");
-    ASSERT_EQ(s.cameras.size(), 1u);
-    const rt::Camera& c = s.cameras[0];
+    ASSERT_EQ(s.setup.cameras.size(), 1u);
+    const rt::Camera& c = s.setup.cameras[0];
     EXPECT_EQ(c.width, 3);
     EXPECT_EQ(c.height, 3);
     EXPECT_EQ(c.image_name, "a.png");
@@ -84,7 +84,7 @@ TEST(GeometryCamera, AsymmetricNearPlaneAndNearDistance) {
     const rt::Scene s = camera_scene(R"({
         "Position": "1 2 3", "Gaze": "0 0 -4", "Up": "0 7 0",
         "NearPlane": "-1 3 -2 0", "NearDistance": "2", "ImageResolution": "2 2", "ImageName": "a.png"})");
-    const rt::Camera& c = s.cameras[0];
+    const rt::Camera& c = s.setup.cameras[0];
     const rt::Ray r00 = c.primary_ray(0, 0);
     EXPECT_EQ(r00.org.x, 1);
     EXPECT_EQ(r00.org.y, 2);
@@ -145,24 +145,24 @@ TEST(GeometryCamera, ReorthogonalisedThroughTheLoaderToo) {
     const rt::Scene c = camera_scene("{" + common + R"(, "Up": "0.5 1 -0.5"})");
     for (int j = 0; j < 5; ++j)
         for (int i = 0; i < 5; ++i) {
-            const Vec3 da = a.cameras[0].primary_ray(i, j).dir, dc = c.cameras[0].primary_ray(i, j).dir;
+            const Vec3 da = a.setup.cameras[0].primary_ray(i, j).dir, dc = c.setup.cameras[0].primary_ray(i, j).dir;
             EXPECT_NEAR(da.x, dc.x, kTol);
             EXPECT_NEAR(da.y, dc.y, kTol);
             EXPECT_NEAR(da.z, dc.z, kTol);
         }
     // Centre: along the gaze (1,0,-1)/sqrt(2) in all three.
-    expect_dir(a.cameras[0].primary_ray(2, 2).dir, {1, 0, -1}, "a centre");
-    expect_dir(b.cameras[0].primary_ray(2, 2).dir, {1, 0, -1}, "b centre");
-    expect_dir(c.cameras[0].primary_ray(2, 2).dir, {1, 0, -1}, "c centre");
+    expect_dir(a.setup.cameras[0].primary_ray(2, 2).dir, {1, 0, -1}, "a centre");
+    expect_dir(b.setup.cameras[0].primary_ray(2, 2).dir, {1, 0, -1}, "b centre");
+    expect_dir(c.setup.cameras[0].primary_ray(2, 2).dir, {1, 0, -1}, "c centre");
     // Camera a: w = (-1,0,1)/sqrt2, u = (0,1,0) x w = (1,0,1)/sqrt2, v = (0,1,0).
     // Top-centre pixel (2, 0): s_v = 1 - 2 * 0.5/5 = 0.8: dir ~ 0.8 v - w = (1/sqrt2, 0.8, -1/sqrt2).
     const Real h = 1 / std::sqrt(Real(2));
-    expect_dir(a.cameras[0].primary_ray(2, 0).dir, {h, 0.8, -h}, "a top-centre");
+    expect_dir(a.setup.cameras[0].primary_ray(2, 0).dir, {h, 0.8, -h}, "a top-centre");
     // Camera b: u = normalize((1,1,1) x w) = normalize((1*1-1*0, 1*(-1)-1*1, 1*0-1*(-1))) = (1,-2,1)/sqrt6,
     // v = w x u = (0*1-1*(-2), 1*1-(-1)*1, (-1)(-2)-0*1)/sqrt12 = (2,2,2)/sqrt12 = (1,1,1)/sqrt3.
-    EXPECT_NEAR(b.cameras[0].v.x, 1 / std::sqrt(Real(3)), kTol);
-    EXPECT_NEAR(b.cameras[0].v.y, 1 / std::sqrt(Real(3)), kTol);
-    EXPECT_NEAR(b.cameras[0].u.y, -2 / std::sqrt(Real(6)), kTol);
+    EXPECT_NEAR(b.setup.cameras[0].v.x, 1 / std::sqrt(Real(3)), kTol);
+    EXPECT_NEAR(b.setup.cameras[0].v.y, 1 / std::sqrt(Real(3)), kTol);
+    EXPECT_NEAR(b.setup.cameras[0].u.y, -2 / std::sqrt(Real(6)), kTol);
 }
 
 TEST(GeometryCamera, LookAtSquareNinetyDegrees) {
@@ -170,7 +170,7 @@ TEST(GeometryCamera, LookAtSquareNinetyDegrees) {
     const rt::Scene s = camera_scene(R"({
         "_type": "lookAt", "Position": "0 0 0", "GazePoint": "0 0 -10", "Up": "0 1 0",
         "FovY": "90", "NearDistance": "2", "ImageResolution": "3 3", "ImageName": "a.png"})");
-    const rt::Camera& c = s.cameras[0];
+    const rt::Camera& c = s.setup.cameras[0];
     EXPECT_NEAR(c.top, 2, kTol);
     EXPECT_NEAR(c.bottom, -2, kTol);
     EXPECT_NEAR(c.right, 2, kTol);
@@ -194,11 +194,11 @@ TEST(GeometryCamera, LookAtCornerOfLargeImageApproaches45Degrees) {
     const rt::Scene s = camera_scene(R"({
         "_type": "lookAt", "Position": "0 0 0", "GazePoint": "0 0 -1", "Up": "0 1 0",
         "FovY": "90", "NearDistance": "1", "ImageResolution": "1001 1001", "ImageName": "a.png"})");
-    const Vec3 d = s.cameras[0].primary_ray(0, 0).dir;
-    const Real deg = Real(180) / Real(3.14159265358979323846);
+    const Vec3 d = s.setup.cameras[0].primary_ray(0, 0).dir;
+    const Real deg = Real(180) / rt::kPi;
     EXPECT_NEAR(std::atan2(d.y, -d.z) * deg, 44.97138, 1e-4);
     EXPECT_NEAR(std::atan2(-d.x, -d.z) * deg, 44.97138, 1e-4);
-    expect_dir(s.cameras[0].primary_ray(500, 500).dir, {0, 0, -1}, "centre");
+    expect_dir(s.setup.cameras[0].primary_ray(500, 500).dir, {0, 0, -1}, "centre");
 }
 
 TEST(GeometryCamera, LookAtLandscapeAndPortrait) {
@@ -207,18 +207,18 @@ TEST(GeometryCamera, LookAtLandscapeAndPortrait) {
     const rt::Scene land = camera_scene(R"({
         "_type": "lookAt", "Position": "0 0 0", "GazePoint": "0 0 -3", "Up": "0 1 0",
         "FovY": "90", "NearDistance": "1", "ImageResolution": "4 2", "ImageName": "a.png"})");
-    EXPECT_NEAR(land.cameras[0].right, 2, kTol);
-    EXPECT_NEAR(land.cameras[0].top, 1, kTol);
-    expect_dir(land.cameras[0].primary_ray(0, 0).dir, {-1.5, 0.5, -1}, "landscape (0,0)");
-    expect_dir(land.cameras[0].primary_ray(3, 1).dir, {1.5, -0.5, -1}, "landscape (3,1)");
+    EXPECT_NEAR(land.setup.cameras[0].right, 2, kTol);
+    EXPECT_NEAR(land.setup.cameras[0].top, 1, kTol);
+    expect_dir(land.setup.cameras[0].primary_ray(0, 0).dir, {-1.5, 0.5, -1}, "landscape (0,0)");
+    expect_dir(land.setup.cameras[0].primary_ray(3, 1).dir, {1.5, -0.5, -1}, "landscape (3,1)");
     // Portrait 2x4: right = 1 * 2/4 = 0.5; pixel (0,0): s_u = -0.5 + 1*0.5/2 = -0.25, s_v = 1 - 2*0.5/4 = 0.75.
     const rt::Scene port = camera_scene(R"({
         "_type": "lookAt", "Position": "0 0 0", "GazePoint": "0 0 -3", "Up": "0 1 0",
         "FovY": "90", "NearDistance": "1", "ImageResolution": "2 4", "ImageName": "a.png"})");
-    EXPECT_NEAR(port.cameras[0].right, 0.5, kTol);
-    EXPECT_NEAR(port.cameras[0].top, 1, kTol);
-    expect_dir(port.cameras[0].primary_ray(0, 0).dir, {-0.25, 0.75, -1}, "portrait (0,0)");
-    expect_dir(port.cameras[0].primary_ray(1, 3).dir, {0.25, -0.75, -1}, "portrait (1,3)");
+    EXPECT_NEAR(port.setup.cameras[0].right, 0.5, kTol);
+    EXPECT_NEAR(port.setup.cameras[0].top, 1, kTol);
+    expect_dir(port.setup.cameras[0].primary_ray(0, 0).dir, {-0.25, 0.75, -1}, "portrait (0,0)");
+    expect_dir(port.setup.cameras[0].primary_ray(1, 3).dir, {0.25, -0.75, -1}, "portrait (1,3)");
 }
 
 TEST(GeometryCamera, LookAtSixtyDegreesOffAxisGazePoint) {
@@ -227,7 +227,7 @@ TEST(GeometryCamera, LookAtSixtyDegreesOffAxisGazePoint) {
     const rt::Scene s = camera_scene(R"({
         "_type": "lookAt", "Position": "1 1 1", "GazePoint": "0 0 0", "Up": "0 1 0",
         "FovY": "60", "NearDistance": "1", "ImageResolution": "5 5", "ImageName": "a.png"})");
-    const rt::Camera& c = s.cameras[0];
+    const rt::Camera& c = s.setup.cameras[0];
     EXPECT_NEAR(c.top, 1 / std::sqrt(Real(3)), kTol);
     EXPECT_NEAR(c.right, 1 / std::sqrt(Real(3)), kTol);
     expect_dir(c.primary_ray(2, 2).dir, {-1, -1, -1}, "centre looks at the gaze point");
@@ -469,8 +469,8 @@ TEST(GeometryScene, CullingIgnoresBackFacesOnly) {
     m.indices = {0, 1, 2};  // normal +z
     d.meshes.push_back(m);
     const rt::Scene s = rt::build_scene(d);
-    ASSERT_EQ(s.triangles.size(), 1u);
-    EXPECT_NEAR(s.face_normal(0).z, 1, kTol);
+    ASSERT_EQ(s.geometry.triangles.size(), 1u);
+    EXPECT_NEAR(s.geometry.face_normal(0).z, 1, kTol);
     rt::Hit h;
     const rt::Ray down{{0.25, 0.25, 1}, {0, 0, -1}}, up{{0.25, 0.25, -1}, {0, 0, 1}};
     EXPECT_TRUE(rt::closest_hit(s, down, 0, HUGE_VAL, true, h));   // front face
@@ -490,17 +490,17 @@ TEST(GeometryScene, ClosestOfMixedPrimitives) {
     m.indices = {0, 1, 2};
     d.meshes.push_back(m);
     const rt::Scene s = rt::build_scene(d);
-    EXPECT_NEAR(s.planes[0].normal.z, 1, kTol);
+    EXPECT_NEAR(s.geometry.planes[0].normal.z, 1, kTol);
     const rt::Ray r{{0, 0, 10}, {0, 0, -1}};
     rt::Hit h;
     ASSERT_TRUE(rt::closest_hit(s, r, 0, HUGE_VAL, true, h));
-    EXPECT_EQ(h.kind, rt::HitKind::Triangle);
+    EXPECT_EQ(h.kind, rt::ShapeKind::Triangle);
     EXPECT_EQ(h.t, 5);
     ASSERT_TRUE(rt::closest_hit(s, r, 5, HUGE_VAL, true, h));  // tmin open: skips the triangle
-    EXPECT_EQ(h.kind, rt::HitKind::Sphere);
+    EXPECT_EQ(h.kind, rt::ShapeKind::Sphere);
     EXPECT_EQ(h.t, 6);
     ASSERT_TRUE(rt::closest_hit(s, r, 8.5, HUGE_VAL, true, h));  // past the sphere's far root 8: plane
-    EXPECT_EQ(h.kind, rt::HitKind::Plane);
+    EXPECT_EQ(h.kind, rt::ShapeKind::Plane);
     EXPECT_EQ(h.t, 10);
     EXPECT_FALSE(rt::closest_hit(s, r, 0, 4.5, true, h));
     EXPECT_FALSE(rt::any_hit(s, r, 0, 4.5));
@@ -579,10 +579,10 @@ bool vertex_is_covered(const std::vector<Vec3>& pos, const Topology& topo, uint3
         const Real px = rt::dot(P, e1), py = rt::dot(P, e2), qx = rt::dot(Q, e1), qy = rt::dot(Q, e2);
         if (std::hypot(px, py) < kMargin || std::hypot(qx, qy) < kMargin) return false;
         const Real ang = std::atan2(px * qy - py * qx, px * qx + py * qy);
-        if (std::fabs(std::fabs(ang) - Real(3.14159265358979)) < kMargin) return false;  // edge through v
+        if (std::fabs(std::fabs(ang) - rt::kPi) < kMargin) return false;  // edge through v
         sum += ang;
     }
-    return std::fabs(sum) > Real(3.14159265358979);
+    return std::fabs(sum) > rt::kPi;
 }
 
 // Shoots rays from random origins through random points on shared edges and through the
@@ -627,8 +627,8 @@ int shoot_through_edges_and_vertices(const rt::Scene& s, const std::vector<Vec3>
         // within rounding error of it, so at grazing angles it may meet them a little past the
         // target), or something in front of the target.
         bool around = false;
-        if (hit && h.kind == rt::HitKind::Triangle) {
-            const uint32_t* tv = s.triangles[h.index].v;
+        if (hit && h.kind == rt::ShapeKind::Triangle) {
+            const uint32_t* tv = s.geometry.triangles[h.index].v;
             auto has = [&](uint32_t v) { return tv[0] == v || tv[1] == v || tv[2] == v; };
             around = has(must_have[0]) && has(must_have[1]);
         }
@@ -664,8 +664,8 @@ TEST(GeometryWatertight, JitteredGridThroughEdgesAndVertices) {
     rt::SceneDesc d = empty_desc();
     d.meshes.push_back(m);
     const rt::Scene s = rt::build_scene(d);
-    ASSERT_EQ(s.triangles.size(), size_t(2 * n * n));
-    ASSERT_EQ(s.degenerate_triangles, 0u);
+    ASSERT_EQ(s.geometry.triangles.size(), size_t(2 * n * n));
+    ASSERT_EQ(s.report.degenerate_triangles, 0u);
 
     const Topology topo = topology(m.indices, m.positions.size());
     ASSERT_TRUE(topo.consistent);
@@ -761,7 +761,7 @@ TEST(GeometryWatertight, ClosedMeshThroughEdgesAndVertices) {
     rt::SceneDesc d = empty_desc();
     d.meshes.push_back(m);
     const rt::Scene s = rt::build_scene(d);
-    ASSERT_EQ(s.triangles.size(), size_t(12 * k * k));
+    ASSERT_EQ(s.geometry.triangles.size(), size_t(12 * k * k));
     const Topology topo = topology(m.indices, m.positions.size());
     ASSERT_TRUE(topo.consistent) << "the test mesh must be consistently oriented";
     ASSERT_EQ(topo.shared.size(), size_t(18 * k * k)) << "every edge must be shared by exactly two triangles";

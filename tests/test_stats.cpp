@@ -401,12 +401,12 @@ TEST(Stats, DefaultBvhOptionsBuildTheSameTree) {
     EXPECT_EQ(o.block, rt::kLeafBlock);
     EXPECT_TRUE(o.sah);
     const rt::Scene b = rt::build_scene(d, o);
-    ASSERT_EQ(a.bvh.nodes.size(), b.bvh.nodes.size());
-    EXPECT_EQ(0, std::memcmp(a.bvh.nodes.begin(), b.bvh.nodes.begin(), a.bvh.nodes.size() * sizeof(rt::Bvh4Node)));
-    EXPECT_EQ(a.bvh.prims, b.bvh.prims);
+    ASSERT_EQ(a.accel.bvh.nodes.size(), b.accel.bvh.nodes.size());
+    EXPECT_EQ(0, std::memcmp(a.accel.bvh.nodes.begin(), b.accel.bvh.nodes.begin(), a.accel.bvh.nodes.size() * sizeof(rt::Bvh4Node)));
+    EXPECT_EQ(a.accel.bvh.prims, b.accel.bvh.prims);
     o.max_leaf = 1;
     const rt::Scene c = rt::build_scene(d, o);
-    for (const rt::Bvh4Node& n : c.bvh.nodes)
+    for (const rt::Bvh4Node& n : c.accel.bvh.nodes)
         for (int i = 0; i < 4; ++i)
             if (n.is_leaf(i) && n.child[i] != rt::Bvh4Node::kEmpty) {
                 EXPECT_LE(n.count[i], 1);

@@ -371,8 +371,8 @@ TEST(XmlOfficial, AllThirteenLoadAndRender) {
             EXPECT_NE(rt::image_format_of(c.image_name), rt::ImageFormat::Unknown) << c.image_name;
         }
         const rt::Scene s = rt::build_scene(d);
-        EXPECT_GT(s.triangles.size() + s.spheres.size() + s.planes.size(), 0u);
-        for (size_t c = 0; c < s.cameras.size(); ++c) {
+        EXPECT_GT(s.geometry.triangles.size() + s.geometry.spheres.size() + s.geometry.planes.size(), 0u);
+        for (size_t c = 0; c < s.setup.cameras.size(); ++c) {
             const rt::Image img = rt::render(s, c, rt::RenderOptions{});
             EXPECT_GT(*std::max_element(img.rgb.begin(), img.rgb.end()), 0) << "camera " << c + 1 << " is all black";
         }
@@ -385,7 +385,7 @@ TEST(XmlOfficial, BunnyAndTwoSpheresMatchTheReferences) {
     for (const char* name : {"bunny", "two_spheres"}) {
         SCOPED_TRACE(name);
         const rt::Scene s = rt::build_scene(rt::load_scene(dir + "/" + name + ".xml"));
-        ASSERT_EQ(s.cameras.size(), 1u);
+        ASSERT_EQ(s.setup.cameras.size(), 1u);
         const rt::Image ours = rt::render(s, 0, rt::RenderOptions{});
         rt::Image ref;
         ASSERT_TRUE(load_png(shared_dir() + "/references/hw1/" + name + ".png", ref));

@@ -5,6 +5,8 @@
 // up to 8 primitives, tested four at a time with AVX2, and the SAH prices them
 // that way (BvhBuildOptions::block).
 #pragma once
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -15,25 +17,58 @@
 
 namespace rt {
 
-// An axis-aligned box in Real precision.
-struct Aabb {
-    Vec3 lo{Real(HUGE_VAL), Real(HUGE_VAL), Real(HUGE_VAL)}, hi{-Real(HUGE_VAL), -Real(HUGE_VAL), -Real(HUGE_VAL)};
-    void extend(Vec3 p) { lo = vmin(lo, p); hi = vmax(hi, p); }
-    void extend(const Aabb& b) { lo = vmin(lo, b.lo); hi = vmax(hi, b.hi); }
+// Rounds a Real bound outwards to float.
+float round_down_to_float(Real x);
+float round_up_to_float(Real x);
+
+// The box types: Box (below) for every box the code handles as a whole; a
+// BuildBox for each primitive the builder sorts (a Box's corners around its id);
+// Bvh4Node's child slots (four boxes, structure of arrays, for the SIMD slab
+// test); and, inside the builder only, Box8, a box held in one AVX register as
+// (lo, -hi) so that one min instruction extends both corners (bvh_build.cpp).
+
+// An axis-aligned box in float: bounds rounded outwards contain Real geometry
+// exactly. The default box is empty (lo = +inf, hi = -inf).
+struct Box {
+    float lo[3] = {HUGE_VALF, HUGE_VALF, HUGE_VALF};
+    float hi[3] = {-HUGE_VALF, -HUGE_VALF, -HUGE_VALF};
+
+    // The smallest float box around the Real box [lo, hi].
+    static Box around(Vec3 lo, Vec3 hi) {
+        Box b;
+        for (int a = 0; a < 3; ++a) {
+            b.lo[a] = round_down_to_float(lo[a]);
+            b.hi[a] = round_up_to_float(hi[a]);
+        }
+        return b;
+    }
+    void extend(const float l[3], const float h[3]) {
+        for (int a = 0; a < 3; ++a) {
+            lo[a] = std::min(lo[a], l[a]);
+            hi[a] = std::max(hi[a], h[a]);
+        }
+    }
+    void extend(const Box& b) { extend(b.lo, b.hi); }
+    // Surface area; 0 for an empty box.
+    float area() const {
+        const float x = hi[0] - lo[0], y = hi[1] - lo[1], z = hi[2] - lo[2];
+        return x < 0 ? 0 : 2 * (x * y + y * z + z * x);
+    }
 };
 
-// Primitive bounds handed to the builder (float, already rounded outwards).
-// The builder sorts these in place; `id` is set by Bvh::build.
+// A primitive's bounds handed to the builder, laid out as the builder's SIMD
+// loads want them (lo in floats 0..2, hi in 4..6). The builder sorts these in
+// place; `id` is set by Bvh::build.
 struct BuildBox {
     float lo[3];
     uint32_t id;
     float hi[3];
     uint32_t unused;
-};
 
-// Rounds a Real bound outwards to float.
-float round_down_to_float(Real x);
-float round_up_to_float(Real x);
+    static BuildBox of(const Box& b) {
+        return {{b.lo[0], b.lo[1], b.lo[2]}, 0, {b.hi[0], b.hi[1], b.hi[2]}, 0};
+    }
+};
 
 struct alignas(64) Bvh4Node {
     // Child boxes, structure of arrays: lo[axis][child], hi[axis][child].
@@ -99,10 +134,13 @@ struct Bvh {
     std::vector<uint32_t> prims;  // primitive ids in leaf order
     int depth = 0;                // of the 4-wide tree, root = 1
 
-    // Builds over `boxes[i]` (one box per primitive id i), sorting them in place:
-    // their contents are unspecified afterwards, their storage the caller's to
-    // free or reuse (build_scene reuses it for Scene::leaf_storage).
-    void build(UninitVector<BuildBox>& boxes, const BvhBuildOptions& options = {});
+    // Builds over `boxes[i]` (one box per primitive id i, n of them), sorting them
+    // in place: their contents are unspecified afterwards, their storage the
+    // caller's to free or reuse (build_scene reuses it for the leaf-order vertices).
+    void build(BuildBox* boxes, size_t n, const BvhBuildOptions& options = {});
+    void build(UninitVector<BuildBox>& boxes, const BvhBuildOptions& options = {}) {
+        build(boxes.data(), boxes.size(), options);
+    }
 };
 
 }  // namespace rt

@@ -1,5 +1,5 @@
-// Ray/primitive intersection and the two scene queries every ray uses:
-// closest hit (camera, reflection, refraction rays) and any hit (shadow rays).
+// Ray/primitive intersection: the watertight triangle test, spheres and planes.
+// The scene queries built on them, closest_hit and any_hit, are in scene.h.
 #pragma once
 #include <cmath>
 #include <cstdint>
@@ -8,8 +8,6 @@
 #include "rt/math.h"
 
 namespace rt {
-
-struct Scene;
 
 // Per-ray constants of the watertight triangle test (Woop, Benthin, Wald 2013):
 // the ray is sheared so that it runs along +z, then edge functions are evaluated
@@ -160,27 +158,5 @@ inline bool intersect_plane(const Ray& r, Vec3 point, Vec3 normal, Real tmin, Re
     t = tt;
     return true;
 }
-
-enum class HitKind : uint32_t { Triangle, Sphere, Plane };
-
-struct Hit {
-    Real t = HUGE_VAL;
-    HitKind kind = HitKind::Triangle;
-    uint32_t index = 0;  // into Scene::triangles, spheres or planes
-    Real w[3] = {0, 0, 0};  // barycentric weights (triangles)
-};
-
-// Closest hit in (tmin, tmax). With `cull`, triangles whose geometric normal
-// points along the ray are ignored (spec 2.9). Ties in t go to the lower
-// primitive id, so the answer does not depend on the BVH layout.
-bool closest_hit(const Scene& scene, const Ray& ray, Real tmin, Real tmax, bool cull, Hit& hit);
-
-// True when anything lies in (tmin, tmax); never culls (spec 2.9: shadow rays).
-// `occluder`, when given, is a hint: a BVH primitive id (or kNoOccluder) tested
-// before the traversal, and on a BVH hit it receives the id that was found.
-// Neighbouring shadow rays are mostly blocked by the same primitive; the answer
-// never depends on the hint.
-constexpr uint32_t kNoOccluder = ~0u;
-bool any_hit(const Scene& scene, const Ray& ray, Real tmin, Real tmax, uint32_t* occluder = nullptr);
 
 }  // namespace rt

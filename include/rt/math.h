@@ -7,6 +7,11 @@
 
 namespace rt {
 
+// pi in the floating type T (std::numbers::pi_v before C++20); kPi in Real.
+template <class T>
+inline constexpr T pi_v = static_cast<T>(3.141592653589793238462643383279502884L);
+inline constexpr Real kPi = pi_v<Real>;
+
 struct Vec3 {
     Real x = 0, y = 0, z = 0;
 

@@ -1,28 +1,62 @@
-// Render data: flat arrays built once from a SceneDesc. Constructors never see JSON.
-// Triangles share one vertex array; spheres and triangles sit under one BVH,
-// infinite planes are tested separately (they have no finite bounds).
+// Render data, built once from a SceneDesc (build_scene); constructors never see
+// JSON. A Scene has four parts:
+//   setup     what the scene says besides its shapes: settings, cameras, lights, materials
+//   geometry  the shapes: one vertex array shared by the triangles, spheres, planes
+//   accel     the acceleration structure over the bounded shapes (BVH, leaf-order vertices)
+//   report    what the build measured and skipped
+// Triangles and spheres sit under one BVH; infinite planes are tested by every ray.
 #pragma once
+#include <cstddef>
 #include <cstdint>
-#include <string>
+#include <iterator>
+#include <utility>
 #include <vector>
 
 #include "rt/bvh.h"
 #include "rt/camera.h"
+#include "rt/intersect.h"
 #include "rt/scene_desc.h"
+#include "rt/uninit_vector.h"
 
 namespace rt {
 
-struct Material {
-    MaterialType type = MaterialType::Plain;
-    Vec3 ambient, diffuse, specular;
-    Real phong_exponent = 1;
-    Vec3 mirror;
-    Real refraction_index = 1, absorption_index = 0;
-    Vec3 absorption_coefficient;
+// The materials and lights are rendered as loaded. (A Plain material's
+// MirrorReflectance is never read: reference-conventions.md, "Shading".)
+using Material = MaterialDesc;
+using PointLight = PointLightDesc;
+
+// What the scene file says, apart from its shapes.
+struct SceneSetup {
+    Vec3 background, ambient_light;
+    Real shadow_ray_epsilon = Real(1e-3);
+    int max_recursion_depth = 6;
+    std::vector<Camera> cameras;
+    std::vector<PointLight> lights;
+    std::vector<Material> materials;
 };
 
+// ---- The shapes -------------------------------------------------------------------
+// Every shape has a kind, an array in Geometry and a primitive id: ids number the
+// kinds in ShapeKind order, triangles first, then spheres, then planes. The bounded
+// kinds come first: their ids are the BVH's; the planes after them are infinite,
+// and every ray tests them on its own (src/bvh/traverse.cpp). Ids are the
+// closest-hit tie-break, so their order is part of the images.
+//
+// To add a shape (-Wswitch-enum points at every switch to extend):
+//  1. include/rt/scene.h (here): its struct (with a `material`); its enumerator in
+//     ShapeKind and kShapeKinds (a bounded shape goes before Plane); its array in
+//     Geometry; its case in Geometry's shape_of (the one decoding of an id), count,
+//     bounds, intersect and surface, and in holds_leaf_vertices.
+//  2. include/rt/intersect.h: its ray test, beside intersect_sphere.
+//  3. src/geometry/build_scene.cpp: its array filled from the SceneDesc (build()).
+// The loader reads it into the SceneDesc (scene_desc.h, src/loader/json_loader.cpp).
+// A new unbounded shape also needs the planes' loops in src/bvh/traverse.cpp.
+enum class ShapeKind : uint32_t { Triangle, Sphere, Plane };
+inline constexpr ShapeKind kShapeKinds[] = {ShapeKind::Triangle, ShapeKind::Sphere, ShapeKind::Plane};
+static_assert(std::size(kShapeKinds) == size_t(ShapeKind::Plane) + 1, "kShapeKinds lists every kind, in order");
+
 struct Triangle {
-    uint32_t v[3];            // into Scene::positions (and Scene::vertex_normals when smooth)
+    uint32_t v[3];            // into Geometry::positions (and vertex_normals when smooth)
     uint32_t material : 31;
     uint32_t smooth : 1;      // 1: interpolate vertex normals; 0: flat
 };
@@ -39,43 +73,77 @@ struct Plane {
     uint32_t material;
 };
 
-struct PointLight {
-    Vec3 position, intensity;
+// Whether the leaf-order vertices (LeafVertices) can stand in for this kind's
+// primitives in the BVH leaves: they hold three vertices per primitive, which is
+// all a triangle is. build_scene makes them only when every kind present says yes.
+constexpr bool holds_leaf_vertices(ShapeKind kind) {
+    switch (kind) {
+        case ShapeKind::Triangle: return true;
+        case ShapeKind::Sphere: return false;
+        case ShapeKind::Plane: return true;  // not in the BVH
+    }
+    return false;
+}
+
+// A primitive: its kind and its index in that kind's array.
+struct ShapeRef {
+    ShapeKind kind;
+    uint32_t index;
 };
 
-struct Scene {
-    std::string path;
-    Vec3 background, ambient_light;
-    Real shadow_ray_epsilon = Real(1e-3);
-    int max_recursion_depth = 6;
+// A ray's closest hit.
+struct Hit {
+    Real t = HUGE_VAL;
+    ShapeKind kind = ShapeKind::Triangle;
+    uint32_t index = 0;     // into Geometry::triangles, spheres or planes
+    Real w[3] = {0, 0, 0};  // barycentric weights (triangles)
+};
 
-    std::vector<Camera> cameras;
-    std::vector<PointLight> lights;
-    std::vector<Material> materials;
+// What shading needs to know about a hit point.
+struct Surface {
+    Vec3 ng;            // unit geometric normal, the outward (counter-clockwise) side
+    Vec3 ns;            // unit shading normal, on ng's side
+    uint32_t material;  // into SceneSetup::materials
+};
 
+struct Geometry {
     std::vector<Vec3> positions;
     std::vector<Vec3> vertex_normals;  // area-weighted, per mesh; unit length or zero
     UninitVector<Triangle> triangles;
     std::vector<Sphere> spheres;
     std::vector<Plane> planes;
 
-    // Over primitive ids: [0, triangles.size()) are triangles, the rest spheres.
-    Bvh bvh;
-    // Each triangle's vertices a, b, c as 9 floats, in BVH leaf order (entry i is
-    // triangle bvh.prims[i]), so that a leaf's triangles are one block of memory
-    // instead of a chain of loads (prims, triangles, positions). Present only when
-    // it changes no number the tests see: every vertex coordinate is a float
-    // exactly (PLY meshes are), there are no spheres, and leaves test four
-    // triangles at once (kLeafBlock); null otherwise. The storage is the BVH
-    // build's box array, reused (its pages are already touched: on this VM a
-    // fresh page costs more than the copy into it).
-    UninitVector<BuildBox> leaf_storage;
-    const float* leaf_vertices() const {
-        return leaf_storage.empty() ? nullptr : reinterpret_cast<const float*>(leaf_storage.data());
+    // Primitives of one kind.
+    uint32_t count(ShapeKind kind) const {
+        switch (kind) {
+            case ShapeKind::Triangle: return static_cast<uint32_t>(triangles.size());
+            case ShapeKind::Sphere: return static_cast<uint32_t>(spheres.size());
+            case ShapeKind::Plane: return static_cast<uint32_t>(planes.size());
+        }
+        return 0;
     }
-    size_t degenerate_triangles = 0;  // skipped at build time
+    // The first primitive id of `kind`.
+    uint32_t first_id(ShapeKind kind) const {
+        uint32_t id = 0;
+        for (ShapeKind k : kShapeKinds) {
+            if (k == kind) break;
+            id += count(k);
+        }
+        return id;
+    }
+    // Ids [0, bounded_count()) are the BVH's primitives.
+    uint32_t bounded_count() const { return first_id(ShapeKind::Plane); }
 
-    Real build_seconds = 0;  // BVH build time, for the per-image report line
+    // The one decoding of a primitive id into its kind and index. kBvh: the id is a
+    // BVH primitive's (bounded), which spares the traversal a comparison.
+    template <bool kBvh = false>
+    ShapeRef shape_of(uint32_t id) const {
+        const uint32_t ntri = static_cast<uint32_t>(triangles.size());
+        if (id < ntri) return {ShapeKind::Triangle, id};
+        id -= ntri;
+        if (kBvh || id < spheres.size()) return {ShapeKind::Sphere, id};
+        return {ShapeKind::Plane, id - static_cast<uint32_t>(spheres.size())};
+    }
 
     // Unit geometric normal of triangle i, counter-clockwise front (spec 3, "Triangle").
     Vec3 face_normal(uint32_t i) const {
@@ -83,11 +151,135 @@ struct Scene {
         const Vec3 a = positions[t.v[0]];
         return normalize(cross(positions[t.v[1]] - a, positions[t.v[2]] - a));
     }
+
+    // Bounds of a primitive, rounded outwards to float (infinite for a plane).
+    Box bounds(ShapeRef s) const {
+        switch (s.kind) {
+            case ShapeKind::Triangle: {
+                const Triangle& t = triangles[s.index];
+                const Vec3 a = positions[t.v[0]], b = positions[t.v[1]], c = positions[t.v[2]];
+                return Box::around(vmin(a, vmin(b, c)), vmax(a, vmax(b, c)));
+            }
+            case ShapeKind::Sphere: {
+                const Sphere& sp = spheres[s.index];
+                const Vec3 r{sp.radius, sp.radius, sp.radius};
+                return Box::around(sp.center - r, sp.center + r);
+            }
+            case ShapeKind::Plane: return {{-HUGE_VALF, -HUGE_VALF, -HUGE_VALF}, {HUGE_VALF, HUGE_VALF, HUGE_VALF}};
+        }
+        return {};
+    }
+
+    // Ray test of one primitive: true with the distance t in (tmin, tmax) on a hit,
+    // and for triangles the barycentric weights w (others leave w alone). kCull,
+    // kShadow: see intersect_triangle.
+    template <bool kCull, bool kShadow = false>
+    bool intersect(const RayPre& p, ShapeRef s, Real tmin, Real tmax, Real& t, Real w[3]) const {
+        switch (s.kind) {
+            case ShapeKind::Triangle: {
+                const Triangle& tri = triangles[s.index];
+                return intersect_triangle<kCull, kShadow>(p, positions[tri.v[0]], positions[tri.v[1]],
+                                                          positions[tri.v[2]], tmin, tmax, t, w);
+            }
+            case ShapeKind::Sphere: {
+                const Sphere& sp = spheres[s.index];
+                return intersect_sphere(p.ray, sp.center, sp.radius, tmin, tmax, t);
+            }
+            case ShapeKind::Plane: {
+                const Plane& pl = planes[s.index];
+                return intersect_plane(p.ray, pl.point, pl.normal, tmin, tmax, t);
+            }
+        }
+        return false;
+    }
+
+    // The surface at hit point p of `h`.
+    Surface surface(const Hit& h, Vec3 p) const {
+        switch (h.kind) {
+            case ShapeKind::Triangle: {
+                const Triangle& tri = triangles[h.index];
+                const Vec3 ng = face_normal(h.index);
+                Vec3 ns = ng;
+                if (tri.smooth) {
+                    const Vec3 n = vertex_normals[tri.v[0]] * h.w[0] + vertex_normals[tri.v[1]] * h.w[1] +
+                                   vertex_normals[tri.v[2]] * h.w[2];
+                    const Real len = length(n);
+                    if (len > 0) ns = n / len;
+                }
+                return {ng, ns, tri.material};
+            }
+            case ShapeKind::Sphere: {
+                const Sphere& sp = spheres[h.index];
+                const Vec3 n = (p - sp.center) / sp.radius;
+                return {n, n, sp.material};
+            }
+            case ShapeKind::Plane: {
+                const Plane& pl = planes[h.index];
+                return {pl.normal, pl.normal, pl.material};
+            }
+        }
+        return {};
+    }
 };
 
-// Float bounds, rounded outwards, of every triangle then every sphere (the BVH's
-// primitive ids).
-UninitVector<BuildBox> primitive_boxes(const Scene& s);
+// Each BVH leaf triangle's vertices a, b, c as 9 floats, in leaf order (entry i is
+// triangle bvh.prims[i]), so that a leaf's triangles are one block of memory
+// instead of a chain of loads (prims, triangles, positions). build_scene makes them
+// only when they change no number the tests see: every vertex coordinate is a
+// float exactly (PLY meshes are), every shape kind present holds_leaf_vertices,
+// and leaves test four triangles at once (kLeafBlock). Their storage is the one
+// the BVH build's boxes were in (ReusableStorage: its pages are already touched,
+// and on this VM a fresh page costs more than the copy into it).
+class LeafVertices {
+public:
+    LeafVertices() = default;
+    // `floats` (9 per triangle, `triangles` of them) is the array `storage` holds.
+    LeafVertices(ReusableStorage&& storage, const float* floats, size_t triangles)
+        : storage_(std::move(storage)), floats_(floats), triangles_(triangles) {}
+    // Null when there are none.
+    const float* data() const { return floats_; }
+    size_t triangles() const { return triangles_; }
+
+private:
+    ReusableStorage storage_;
+    const float* floats_ = nullptr;
+    size_t triangles_ = 0;
+};
+
+// Over primitive ids [0, geometry.bounded_count()).
+struct Acceleration {
+    Bvh bvh;
+    LeafVertices leaf_vertices;
+};
+
+// What building the scene measured and skipped, for messages and --stats.
+struct BuildReport {
+    double build_seconds = 0;         // BVH build (and leaf-order copy) time
+    size_t degenerate_triangles = 0;  // skipped (spec 2.10)
+};
+
+struct Scene {
+    SceneSetup setup;
+    Geometry geometry;
+    Acceleration accel;
+    BuildReport report;
+};
+
+// Closest hit in (tmin, tmax). With `cull`, triangles whose geometric normal
+// points along the ray are ignored (spec 2.9). Ties in t go to the lower
+// primitive id, so the answer does not depend on the BVH layout.
+bool closest_hit(const Scene& scene, const Ray& ray, Real tmin, Real tmax, bool cull, Hit& hit);
+
+// True when anything lies in (tmin, tmax); never culls (spec 2.9: shadow rays).
+// `occluder`, when given, is a hint: a BVH primitive id (or kNoOccluder) tested
+// before the traversal, and on a BVH hit it receives the id that was found.
+// Neighbouring shadow rays are mostly blocked by the same primitive; the answer
+// never depends on the hint.
+constexpr uint32_t kNoOccluder = ~0u;
+bool any_hit(const Scene& scene, const Ray& ray, Real tmin, Real tmax, uint32_t* occluder = nullptr);
+
+// Float bounds, rounded outwards, of every bounded primitive (the BVH's ids).
+UninitVector<BuildBox> primitive_boxes(const Geometry& g);
 
 // Builds render data: gathers the meshes' vertices into one array, computes
 // area-weighted vertex normals of smooth meshes, skips degenerate triangles

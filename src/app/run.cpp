@@ -27,8 +27,8 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 // The measurement overrides (--max-depth, --epsilon-scale) applied to a built scene.
 void apply_overrides(Scene& scene, const RunOptions& o) {
-    if (o.max_depth >= 0) scene.max_recursion_depth = o.max_depth;
-    scene.shadow_ray_epsilon = static_cast<Real>(scene.shadow_ray_epsilon * o.epsilon_scale);
+    if (o.max_depth >= 0) scene.setup.max_recursion_depth = o.max_depth;
+    scene.setup.shadow_ray_epsilon = static_cast<Real>(scene.setup.shadow_ray_epsilon * o.epsilon_scale);
 }
 
 // A scene ready to render, with what the summary lines and records report of it.
@@ -86,7 +86,7 @@ std::optional<LoadedScene> load(const std::string& scene_path, const RunOptions&
 // Throws on failure (InputError for an unwritable path).
 ImageRecord render_camera(const std::string& scene_path, const LoadedScene& s, size_t c, const std::string& out,
                           const RunOptions& o) {
-    const Camera& cam = s.scene.cameras[c];
+    const Camera& cam = s.scene.setup.cameras[c];
     make_parent_folders(out);
     RenderOptions ropt = o.render;
     app::ProgressLine progress(o.progress && !o.quiet && app::stderr_is_terminal());
@@ -116,8 +116,8 @@ bool run_scene(const std::string& scene_path, const RunOptions& o, std::vector<I
     const std::optional<LoadedScene> s = load(scene_path, o);
     if (!s) return false;
     bool ok = true;
-    for (size_t c = 0; c < s->scene.cameras.size(); ++c) {
-        std::string out = s->scene.cameras[c].image_name;
+    for (size_t c = 0; c < s->scene.setup.cameras.size(); ++c) {
+        std::string out = s->scene.setup.cameras[c].image_name;
         if (!o.output_dir.empty() && out[0] != '/') out = o.output_dir + "/" + out;
         try {
             records.push_back(render_camera(scene_path, *s, c, out, o));
@@ -129,7 +129,8 @@ bool run_scene(const std::string& scene_path, const RunOptions& o, std::vector<I
                          out.c_str());
             ok = false;
         } catch (const std::exception& e) {
-            // E.g. std::system_error when no thread can be started.
+            // Any other failure of this camera (helper threads that cannot start do not
+            // fail: their work runs on the calling thread, rt/threads.h).
             std::fprintf(stderr, "%s: camera %zu: cannot render %s: %s\n", scene_path.c_str(), c + 1, out.c_str(),
                          e.what());
             ok = false;
@@ -142,17 +143,17 @@ bool run_scene(const std::string& scene_path, const RunOptions& o, std::vector<I
 
 SceneFigures scene_figures(const Scene& scene, const SceneTimes& seconds) {
     SceneFigures f;
-    f.triangles = scene.triangles.size();
-    f.spheres = scene.spheres.size();
-    f.planes = scene.planes.size();
-    f.lights = scene.lights.size();
-    f.degenerate = scene.degenerate_triangles;
-    f.bvh_nodes = scene.bvh.nodes.size();
-    f.bvh_depth = scene.bvh.depth;
-    f.max_recursion_depth = scene.max_recursion_depth;
-    f.shadow_ray_epsilon = double(scene.shadow_ray_epsilon);
+    f.triangles = scene.geometry.triangles.size();
+    f.spheres = scene.geometry.spheres.size();
+    f.planes = scene.geometry.planes.size();
+    f.lights = scene.setup.lights.size();
+    f.degenerate = scene.report.degenerate_triangles;
+    f.bvh_nodes = scene.accel.bvh.nodes.size();
+    f.bvh_depth = scene.accel.bvh.depth;
+    f.max_recursion_depth = scene.setup.max_recursion_depth;
+    f.shadow_ray_epsilon = double(scene.setup.shadow_ray_epsilon);
     f.seconds = seconds;
-    f.seconds.bvh = double(scene.build_seconds);
+    f.seconds.bvh = double(scene.report.build_seconds);
     return f;
 }
 

@@ -74,25 +74,13 @@ constexpr int kSahDepthLimit = 48;   // beyond it, object-median splits bound th
 constexpr uint32_t kParallelMin = 1u << 15;    // smallest subtree worth a thread
 constexpr uint32_t kParallelSplit = 1u << 20;  // smallest range whose split is shared by two threads
 
-struct FBox {
-    float lo[3] = {HUGE_VALF, HUGE_VALF, HUGE_VALF};
-    float hi[3] = {-HUGE_VALF, -HUGE_VALF, -HUGE_VALF};
-    void extend(const float l[3], const float h[3]) {
-        for (int a = 0; a < 3; ++a) {
-            lo[a] = std::min(lo[a], l[a]);
-            hi[a] = std::max(hi[a], h[a]);
-        }
-    }
-    void extend(const FBox& b) { extend(b.lo, b.hi); }
-    float area() const {
-        const float x = hi[0] - lo[0], y = hi[1] - lo[1], z = hi[2] - lo[2];
-        return x < 0 ? 0 : 2 * (x * y + y * z + z * x);
-    }
-};
-
 // A box as eight floats (lo0, lo1, lo2, 0, -hi0, -hi1, -hi2, 0): one min
 // extends both ends, so binning and partitioning need one instruction per box
-// with AVX. The empty box is all +inf.
+// with AVX. The empty box is all +inf. A type of its own because it lives in a
+// register: binning and partitioning (most of the build) load every BuildBox
+// into one and extend one per bin and side; a Box (lo, hi) would take a min and
+// a max and twice the loads for each. Range bounds and node slots are Boxes
+// (to_box).
 #if defined(__AVX__)
 using Box8 = __m256;
 inline Box8 empty8() { return _mm256_set1_ps(HUGE_VALF); }
@@ -110,8 +98,8 @@ inline Box8 centroid8(Box8 v) {
     const __m128 c = centre4(v);
     return _mm256_insertf128_ps(_mm256_castps128_ps256(c), _mm_xor_ps(c, _mm_set1_ps(-0.0f)), 1);
 }
-// FBox::area of the box, bit for bit: lo - hi = -(hi - lo) exactly, and the
-// products and their order of summation are FBox::area's.
+// Box::area of the box, bit for bit: lo - hi = -(hi - lo) exactly, and the
+// products and their order of summation are Box::area's.
 inline float area8(Box8 v) {
     const __m128 e = _mm_add_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));  // -(extent)
     if (_mm_cvtss_f32(e) > 0) return 0;                                                    // empty
@@ -146,10 +134,10 @@ inline float area8(const Box8& v) {
 }
 inline void store8(const Box8& v, float f[8]) { std::copy(v.f, v.f + 8, f); }
 #endif
-inline FBox to_fbox(Box8 v) {
+inline Box to_box(Box8 v) {
     float f[8];
     store8(v, f);
-    FBox b;
+    Box b;
     for (int a = 0; a < 3; ++a) {
         b.lo[a] = f[a];
         b.hi[a] = -f[4 + a];
@@ -163,12 +151,12 @@ inline float centre2(const BuildBox& b, int axis) { return b.lo[axis] + b.hi[axi
 // A range of primitives with its bounds and the bounds of its centroids.
 struct Range {
     uint32_t begin = 0, end = 0;
-    FBox box, cbox;
+    Box box, cbox;
     bool leaf = false;  // decided: stays a leaf
     uint32_t count() const { return end - begin; }
 };
 
-void set_slot(Bvh4Node& n, int slot, const FBox& b) {
+void set_slot(Bvh4Node& n, int slot, const Box& b) {
     for (int a = 0; a < 3; ++a) {
         n.lo[a][slot] = b.lo[a];
         n.hi[a][slot] = b.hi[a];
@@ -178,7 +166,7 @@ void set_slot(Bvh4Node& n, int slot, const FBox& b) {
 // Four empty slots: boxes that no ray enters, no children.
 void clear_node(Bvh4Node& node) {
     for (int i = 0; i < 4; ++i) {
-        set_slot(node, i, FBox());
+        set_slot(node, i, Box());
         node.child[i] = Bvh4Node::kEmpty;
         node.count[i] = 0;
     }
@@ -373,7 +361,7 @@ struct Builder {
         float best = HUGE_VALF;
         uint32_t alone = 0;
         for (uint32_t k = 0; k < (n == 2 ? 1u : n); ++k) {
-            FBox one, rest;
+            Box one, rest;
             for (uint32_t i = 0; i < n; ++i) (i == k ? one : rest).extend(p[i].lo, p[i].hi);
             const float cost = one.area() + rest.area() * blocks(n - 1);
             if (cost < best) {
@@ -433,10 +421,10 @@ struct Builder {
             }
             left = Range{};
             right = Range{};
-            left.box = to_fbox(p.lbox);
-            left.cbox = to_fbox(p.lcen);
-            right.box = to_fbox(p.rbox);
-            right.cbox = to_fbox(p.rcen);
+            left.box = to_box(p.lbox);
+            left.cbox = to_box(p.lcen);
+            right.box = to_box(p.rbox);
+            right.cbox = to_box(p.rcen);
             mid = p.mid;
             if (mid != r.begin && mid != r.end) {
                 left.begin = r.begin;
@@ -462,7 +450,7 @@ struct Builder {
     }
 
     void bounds(Range& r) const {
-        FBox box, cbox;
+        Box box, cbox;
         for (uint32_t i = r.begin; i < r.end; ++i) {
             box.extend(refs[i].lo, refs[i].hi);
             const float c[3] = {centre2(refs[i], 0), centre2(refs[i], 1), centre2(refs[i], 2)};
@@ -526,7 +514,7 @@ struct Builder {
         for (int i = 0; i < n; ++i)
             if (is_split[i]) total += kids[i].count();
         bool to_helper[4] = {};
-        std::thread helper;
+        HelperThread helper;
         if (total >= 2 * uint64_t(kParallelMin) && take_thread()) {
             int order[4], m = 0;
             for (int i = 0; i < n; ++i)
@@ -544,7 +532,7 @@ struct Builder {
                     mine += kids[i].count();
                 }
             }
-            helper = start_or_run([&, level] {
+            helper = HelperThread([&, level] {
                 for (int i = 0; i < n; ++i)
                     if (to_helper[i]) build(child_index[i], halves[i][0], halves[i][1], level + 1);
                 spare_threads.fetch_add(1);
@@ -552,7 +540,7 @@ struct Builder {
         }
         for (int i = 0; i < n; ++i)
             if (is_split[i] && !to_helper[i]) build(child_index[i], halves[i][0], halves[i][1], level + 1);
-        if (helper.joinable()) helper.join();
+        helper.join();
     }
 
     // Runs a on a spare thread, when there is one, beside b on this thread;
@@ -564,9 +552,7 @@ struct Builder {
             b();
             return;
         }
-        std::thread t = start_or_run(a);
-        b();
-        if (t.joinable()) t.join();
+        rt::in_parallel(a, b);
         spare_threads.fetch_add(1);
     }
 
@@ -580,12 +566,12 @@ struct Builder {
 
 }  // namespace
 
-void Bvh::build(UninitVector<BuildBox>& boxes, const BvhBuildOptions& options) {
+void Bvh::build(BuildBox* boxes, size_t count, const BvhBuildOptions& options) {
     nodes.clear();
     prims.clear();
     depth = 0;
-    if (boxes.empty()) return;
-    const uint32_t n = static_cast<uint32_t>(boxes.size());
+    if (count == 0) return;
+    const uint32_t n = static_cast<uint32_t>(count);
     for (uint32_t i = 0; i < n; ++i) boxes[i].id = i;
 
     // Every inner node has >= 2 children and every leaf >= 1 primitive, so a
@@ -599,7 +585,7 @@ void Bvh::build(UninitVector<BuildBox>& boxes, const BvhBuildOptions& options) {
     opt.max_leaf = std::min<uint32_t>(std::max<uint32_t>(opt.max_leaf, 1), 1024);  // Bvh4Node::count is 16 bits
     opt.bins = std::min(std::max(opt.bins, 2), kBins);
     opt.block = std::min<uint32_t>(std::max<uint32_t>(opt.block, 1), 16);
-    Builder b{boxes.data(), nodes, next, max_depth, spare, opt};
+    Builder b{boxes, nodes, next, max_depth, spare, opt};
     Range root{0, n, {}, {}, false};
     b.bounds(root);
     Range l, r;

@@ -82,14 +82,7 @@ inline int test4(const Bvh4Node& n, const BoxRay& r, double tmin, double tmax, d
 // Tests one BVH primitive; returns true with t (and weights) on a hit in (tmin, tmax).
 template <bool kCull, bool kShadow = false>
 inline bool hit_prim(const Scene& s, const RayPre& p, uint32_t id, Real tmin, Real tmax, Real& t, Real w[3]) {
-    const size_t ntri = s.triangles.size();
-    if (id < ntri) {
-        const Triangle& tri = s.triangles[id];
-        return intersect_triangle<kCull, kShadow>(p, s.positions[tri.v[0]], s.positions[tri.v[1]], s.positions[tri.v[2]],
-                                         tmin, tmax, t, w);
-    }
-    const Sphere& sp = s.spheres[id - ntri];
-    return intersect_sphere(p.ray, sp.center, sp.radius, tmin, tmax, t);
+    return s.geometry.intersect<kCull, kShadow>(p, s.geometry.shape_of<true>(id), tmin, tmax, t, w);
 }
 
 #if defined(__AVX2__) && !defined(RT_REAL_FLOAT)
@@ -114,17 +107,17 @@ struct Vertices4 {
 };
 
 // Vertices of triangles ids[0 .. n) (1 <= n <= 4; lanes past n repeat lane n - 1)
-// through their indices into Scene::positions.
+// through their indices into Geometry::positions.
 inline Vertices4 indexed_vertices4(const Scene& s, const RayPre& p, const uint32_t ids[4], int n) {
     // The four triangles' vertex indices, transposed: v0 of each, v1 of each, v2 of each.
     __m128i t[4];
     for (int j = 0; j < 4; ++j)
-        t[j] = _mm_loadu_si128(reinterpret_cast<const __m128i*>(&s.triangles[ids[j < n ? j : n - 1]]));
+        t[j] = _mm_loadu_si128(reinterpret_cast<const __m128i*>(&s.geometry.triangles[ids[j < n ? j : n - 1]]));
     const __m128i lo01 = _mm_unpacklo_epi32(t[0], t[1]), lo23 = _mm_unpacklo_epi32(t[2], t[3]);
     const __m128i hi01 = _mm_unpackhi_epi32(t[0], t[1]), hi23 = _mm_unpackhi_epi32(t[2], t[3]);
     const __m128i vi[3] = {_mm_unpacklo_epi64(lo01, lo23), _mm_unpackhi_epi64(lo01, lo23),
                            _mm_unpacklo_epi64(hi01, hi23)};
-    const double* base = &s.positions.data()->x;
+    const double* base = &s.geometry.positions.data()->x;
     const int axis[3] = {p.kx, p.ky, p.kz};
     Vertices4 r;
     for (int k = 0; k < 3; ++k) {
@@ -137,7 +130,7 @@ inline Vertices4 indexed_vertices4(const Scene& s, const RayPre& p, const uint32
 }
 
 // Vertices of the triangles at leaf positions first .. first + n from
-// Scene::leaf_vertices() (floats that equal the positions exactly).
+// Acceleration::leaf_vertices (floats that equal the positions exactly).
 inline Vertices4 leaf_vertices4(const float* leaf_vertices, const RayPre& p, uint32_t first, int n) {
     const float* base = leaf_vertices + size_t(first) * 9;
     const __m128i lane = _mm_min_epi32(_mm_setr_epi32(0, 1, 2, 3), _mm_set1_epi32(n - 1));
@@ -204,7 +197,7 @@ inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint32_t 
                       Real w[3], const OnHit& hit) {
     // Two loops, one per source of vertices: one loop choosing the source per
     // block of four was 3-10% slower (knot_4m_glass render, medians of 5 and 7).
-    if (const float* leaf_vertices = s.leaf_vertices()) {
+    if (const float* leaf_vertices = s.accel.leaf_vertices.data()) {
         // The leaf's vertices are one block; primitive ids are read only for hits.
         for (uint32_t i = first; i < end; i += 4) {
             const int n = static_cast<int>(std::min<uint32_t>(4, end - i));
@@ -212,21 +205,21 @@ inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint32_t 
             for (int mask = edges4<kCull>(p, leaf_vertices4(leaf_vertices, p, i, n), n, e); mask; mask &= mask - 1) {
                 const int j = __builtin_ctz(mask);
                 Real t;
-                if (triangle_hit<kShadow>(p, e.lane(j), tmin, limit(), t, w) && hit(s.bvh.prims[i + j], t)) return true;
+                if (triangle_hit<kShadow>(p, e.lane(j), tmin, limit(), t, w) && hit(s.accel.bvh.prims[i + j], t))
+                    return true;
             }
         }
         return false;
     }
-    const uint32_t ntri = static_cast<uint32_t>(s.triangles.size());
     for (uint32_t i = first; i < end; i += 4) {
         const int n = static_cast<int>(std::min<uint32_t>(4, end - i));
         uint32_t ids[4];
         bool triangles = true;
         for (int j = 0; j < n; ++j) {
-            ids[j] = s.bvh.prims[i + j];
-            triangles &= ids[j] < ntri;
+            ids[j] = s.accel.bvh.prims[i + j];
+            triangles &= s.geometry.shape_of<true>(ids[j]).kind == ShapeKind::Triangle;
         }
-        if (!triangles) {  // spheres among them: one at a time
+        if (!triangles) {  // other shapes among them: one at a time
             for (int j = 0; j < n; ++j) {
                 Real t;
                 if (hit_prim<kCull, kShadow>(s, p, ids[j], tmin, limit(), t, w) && hit(ids[j], t)) return true;
@@ -247,7 +240,7 @@ template <bool kCull, bool kShadow, class Limit, class OnHit>
 inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint32_t end, Real tmin, const Limit& limit,
                       Real w[3], const OnHit& hit) {
     for (uint32_t i = first; i < end; ++i) {
-        const uint32_t id = s.bvh.prims[i];
+        const uint32_t id = s.accel.bvh.prims[i];
         Real t;
         if (hit_prim<kCull, kShadow>(s, p, id, tmin, limit(), t, w) && hit(id, t)) return true;
     }
@@ -266,7 +259,7 @@ bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
     const RayPre p = prepare(ray);
     bool found = false;
     Real best_t = tmax;
-    uint32_t best_id = ~0u;  // global id: BVH primitive id, then planes after them
+    uint32_t best_id = ~0u;  // primitive id (Geometry::shape_of)
     Real w[3] = {0, 0, 0};  // spheres leave them untouched
     // Primitive tests accept t <= best_t, so ties reach consider() and are settled by
     // id: their range ends at nextafter(best_t), kept here as best_t changes (a libm
@@ -289,7 +282,7 @@ bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
     // the slab distances and the triangle's t).
     auto box_limit = [&]() { return found ? double(best_t * kTieSlack) : double(tmax); };
 
-    if (!s.bvh.nodes.empty()) {
+    if (!s.accel.bvh.nodes.empty()) {
         const BoxRay br = box_ray(p);
         StackEntry stack[kStackSize];
         int sp = 0;
@@ -305,7 +298,7 @@ bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
                                             return false;
                                         });
             } else {
-                const Bvh4Node& n = s.bvh.nodes[e.child];
+                const Bvh4Node& n = s.accel.bvh.nodes[e.child];
                 double t[4];
                 int mask = test4(n, br, double(tmin), box_limit(), t);
                 int order[4], k = 0;  // hit children, farthest first
@@ -335,25 +328,19 @@ bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
             e = stack[--sp];
         }
     }
-    const uint32_t base = static_cast<uint32_t>(s.triangles.size() + s.spheres.size());
-    for (size_t i = 0; i < s.planes.size(); ++i) {
+    // The unbounded shapes, outside the BVH.
+    const std::vector<Plane>& planes = s.geometry.planes;
+    const uint32_t base = s.geometry.first_id(ShapeKind::Plane);
+    for (size_t i = 0; i < planes.size(); ++i) {
         Real t;
-        if (intersect_plane(ray, s.planes[i].point, s.planes[i].normal, tmin, prim_limit, t))
+        if (intersect_plane(ray, planes[i].point, planes[i].normal, tmin, prim_limit, t))
             consider(base + static_cast<uint32_t>(i), t);
     }
     if (!found) return false;
     hit.t = best_t;
-    const size_t ntri = s.triangles.size();
-    if (best_id < ntri) {
-        hit.kind = HitKind::Triangle;
-        hit.index = best_id;
-    } else if (best_id < base) {
-        hit.kind = HitKind::Sphere;
-        hit.index = static_cast<uint32_t>(best_id - ntri);
-    } else {
-        hit.kind = HitKind::Plane;
-        hit.index = best_id - base;
-    }
+    const ShapeRef shape = s.geometry.shape_of(best_id);
+    hit.kind = shape.kind;
+    hit.index = shape.index;
     return true;
 }
 
@@ -364,11 +351,12 @@ bool closest_hit(const Scene& scene, const Ray& ray, Real tmin, Real tmax, bool 
 }
 
 bool any_hit(const Scene& s, const Ray& ray, Real tmin, Real tmax, uint32_t* occluder) {
-    for (const Plane& pl : s.planes) {
+    // The unbounded shapes, outside the BVH.
+    for (const Plane& pl : s.geometry.planes) {
         Real t;
         if (intersect_plane(ray, pl.point, pl.normal, tmin, tmax, t)) return true;
     }
-    if (s.bvh.nodes.empty()) return false;
+    if (s.accel.bvh.nodes.empty()) return false;
     const RayPre p = prepare(ray);
     Real w[3];
     if (occluder && *occluder != kNoOccluder) {
@@ -392,7 +380,7 @@ bool any_hit(const Scene& s, const Ray& ray, Real tmin, Real tmax, uint32_t* occ
                                        }))
                 return true;
         } else {
-            const Bvh4Node& n = s.bvh.nodes[child];
+            const Bvh4Node& n = s.accel.bvh.nodes[child];
             double t[4];
             int mask = test4(n, br, double(tmin), double(tmax), t);
             if (mask) {

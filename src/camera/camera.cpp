@@ -5,7 +5,7 @@
 namespace rt {
 
 void set_look_at(CameraDesc& d, const Vec3& gaze_point, Real fovy_degrees) {
-    const Real pi = Real(3.14159265358979323846);
+    const Real pi = kPi;
     d.gaze = gaze_point - d.position;
     d.top = d.near_distance * std::tan(fovy_degrees * pi / 360);
     d.bottom = -d.top;

@@ -53,8 +53,9 @@ const char* type_name(MaterialType t) {
         case MaterialType::Mirror: return "mirror";
         case MaterialType::Conductor: return "conductor";
         case MaterialType::Dielectric: return "dielectric";
-        default: return "plain";
+        case MaterialType::Plain: return "plain";
     }
+    return "plain";
 }
 
 std::string mtl_material(const MaterialDesc& m, size_t index) {
@@ -127,7 +128,7 @@ ObjText scene_to_obj(const SceneDesc& scene, const std::string& mtl_file_name, i
             w.face({base + m.indices[t] + 1, base + m.indices[t + 1] + 1, base + m.indices[t + 2] + 1});
     }
 
-    const Real pi = Real(3.14159265358979323846);
+    const Real pi = kPi;
     for (size_t i = 0; i < scene.spheres.size(); ++i) {
         const SphereDesc& s = scene.spheres[i];
         w.object("sphere_" + std::to_string(i + 1), s.material, true);

@@ -340,7 +340,7 @@ ObjImport import_obj(const std::string& obj_path, const ConvertOptions& options,
     double radius = 0.5 * std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
                                     (hi[2] - lo[2]) * (hi[2] - lo[2]));
     if (!(radius > 0)) radius = 1;
-    const double fovy = 40, pi = 3.14159265358979323846;
+    const double fovy = 40, pi = pi_v<double>;
     const double aspect = double(options.width) / double(options.height);
     // Fit the bounding sphere in the narrower of the two fields of view.
     const double half = std::atan(std::tan(fovy * pi / 360) * std::min(1.0, aspect));

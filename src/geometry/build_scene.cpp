@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <chrono>
 #include <thread>
+#include <vector>
 #include <utility>
 
 #include "rt/scene.h"
@@ -9,41 +10,6 @@
 
 namespace rt {
 namespace {
-
-Material make_material(const MaterialDesc& d) {
-    Material m;
-    m.type = d.type;
-    m.ambient = d.ambient;
-    m.diffuse = d.diffuse;
-    m.specular = d.specular;
-    m.phong_exponent = d.phong_exponent;
-    // MirrorReflectance on a material without _type is ignored
-    // (reference-conventions.md, "Shading"): the akif_uslu scenes carry it.
-    m.mirror = d.type == MaterialType::Plain ? Vec3{} : d.mirror;
-    m.refraction_index = d.refraction_index;
-    m.absorption_index = d.absorption_index;
-    m.absorption_coefficient = d.absorption_coefficient;
-    return m;
-}
-
-BuildBox make_box(Vec3 lo, Vec3 hi) {
-    BuildBox b{};
-    for (int a = 0; a < 3; ++a) {
-        b.lo[a] = round_down_to_float(lo[a]);
-        b.hi[a] = round_up_to_float(hi[a]);
-    }
-    return b;
-}
-
-BuildBox triangle_box(const std::vector<Vec3>& pos, const uint32_t v[3]) {
-    const Vec3 a = pos[v[0]], b = pos[v[1]], c = pos[v[2]];
-    return make_box(vmin(a, vmin(b, c)), vmax(a, vmax(b, c)));
-}
-
-BuildBox sphere_box(const Sphere& sp) {
-    const Vec3 r{sp.radius, sp.radius, sp.radius};
-    return make_box(sp.center - r, sp.center + r);
-}
 
 // Twice the area vector of triangle (a, b, c) and whether it is degenerate
 // (spec 2.10: two vertices coincide or all three are collinear).
@@ -57,12 +23,12 @@ inline bool degenerate(const std::vector<Vec3>& p, uint32_t a, uint32_t b, uint3
 constexpr size_t kParallelFaces = size_t(1) << 16;
 
 // Appends one mesh: its vertices (taken from `m` when it is the first), its
-// non-degenerate triangles with their BVH boxes (appended to `boxes`, which
-// has one element per triangle of s), and, when smooth, vertex normals
+// non-degenerate triangles with their BVH boxes (boxes[id] for triangle id;
+// room for every triangle of the scene), and, when smooth, vertex normals
 // averaged over this mesh only, weighted by area (spec section 3, "Mesh";
 // pooling across meshes does not match the references). Flat scenes get no
 // vertex normals at all.
-void add_mesh(Scene& s, MeshDesc& m, UninitVector<BuildBox>& boxes) {
+void add_mesh(Geometry& s, BuildReport& report, MeshDesc& m, BuildBox* boxes) {
     const uint32_t base = static_cast<uint32_t>(s.positions.size());
     if (base == 0 && s.positions.capacity() <= m.positions.size())
         s.positions = std::move(m.positions);
@@ -95,7 +61,6 @@ void add_mesh(Scene& s, MeshDesc& m, UninitVector<BuildBox>& boxes) {
     // marked with material 0x7fffffff and squeezed out below.
     constexpr uint32_t kDropped = 0x7fffffff;
     s.triangles.resize(first + faces);
-    boxes.resize(first + faces);
     // Every allocation happens here, not on the helper thread, where running out
     // of memory would end the process instead of reaching main's error message.
     if (smooth) s.vertex_normals.resize(pos.size(), Vec3{});
@@ -116,7 +81,7 @@ void add_mesh(Scene& s, MeshDesc& m, UninitVector<BuildBox>& boxes) {
                 continue;
             }
             t.material = m.material;
-            boxes[first + f] = triangle_box(pos, t.v);
+            boxes[first + f] = BuildBox::of(s.bounds({ShapeKind::Triangle, static_cast<uint32_t>(first + f)}));
         }
         return dropped;
     };
@@ -127,12 +92,12 @@ void add_mesh(Scene& s, MeshDesc& m, UninitVector<BuildBox>& boxes) {
         // faces' cross products (degenerate()): sharing them would make one wait.
         const size_t split = smooth ? faces * 2 / 5 : faces / 2;
         size_t helper_dropped = 0;
-        std::thread helper = start_or_run([&] {
-            if (smooth) accumulate_normals();
-            helper_dropped = convert(0, split);
-        });
-        dropped = convert(split, faces);
-        if (helper.joinable()) helper.join();
+        in_parallel(
+            [&] {
+                if (smooth) accumulate_normals();
+                helper_dropped = convert(0, split);
+            },
+            [&] { dropped = convert(split, faces); });
         dropped += helper_dropped;
     } else {
         if (smooth) accumulate_normals();
@@ -144,7 +109,7 @@ void add_mesh(Scene& s, MeshDesc& m, UninitVector<BuildBox>& boxes) {
     size_t out = first;
     for (size_t i = first; i < first + faces; ++i) {
         if (s.triangles[i].material == kDropped) {
-            ++s.degenerate_triangles;
+            ++report.degenerate_triangles;
             continue;
         }
         if (out != i) {
@@ -154,96 +119,109 @@ void add_mesh(Scene& s, MeshDesc& m, UninitVector<BuildBox>& boxes) {
         ++out;
     }
     s.triangles.resize(out);
-    boxes.resize(out);
+}
+
+// boxes[id] for the bounded primitives from id `first` on.
+void add_boxes(const Geometry& g, uint32_t first, BuildBox* boxes) {
+    for (uint32_t id = first; id < g.bounded_count(); ++id) boxes[id] = BuildBox::of(g.bounds(g.shape_of<true>(id)));
 }
 
 }  // namespace
 
-UninitVector<BuildBox> primitive_boxes(const Scene& s) {
-    UninitVector<BuildBox> boxes(s.triangles.size() + s.spheres.size());
-    for (size_t i = 0; i < s.triangles.size(); ++i) boxes[i] = triangle_box(s.positions, s.triangles[i].v);
-    for (size_t i = 0; i < s.spheres.size(); ++i) boxes[s.triangles.size() + i] = sphere_box(s.spheres[i]);
+UninitVector<BuildBox> primitive_boxes(const Geometry& g) {
+    UninitVector<BuildBox> boxes(g.bounded_count());
+    add_boxes(g, 0, boxes.data());
     return boxes;
 }
 
 namespace {
 
-// x is a float exactly. Out of line on purpose: GCC 12 at -O2, given three such
-// (double)(float) round trips side by side, vectorised them and dropped two
-// (seen on `v = {double(float(v.x)), double(float(v.y)), double(float(v.z))}`).
-[[gnu::noinline]] bool is_float(Real x) { return Real(float(x)) == x; }
+// x is a float exactly.
+inline bool is_float(Real x) { return Real(float(x)) == x; }
 
-// Boxes of storage that hold the leaf-order vertices of n triangles (9 floats each).
-size_t leaf_storage_boxes(size_t n) { return (n * 9 * sizeof(float) + sizeof(BuildBox) - 1) / sizeof(BuildBox); }
+// Floats in the leaf-order vertices of n triangles.
+constexpr size_t leaf_floats(size_t n) { return 9 * n; }
 
-// Scene::leaf_vertices(), when every position is a float exactly, written over
-// `boxes` once the BVH build is done with them (reserved with room for 36 bytes
-// per primitive, so the resize moves nothing); two threads copy half each.
-void copy_leaf_vertices(Scene& s, UninitVector<BuildBox>& boxes) {
-    if (kLeafBlock == 1 || !s.spheres.empty() || s.triangles.empty()) return;
-    for (const Vec3& p : s.positions)
+// Whether the leaf-order vertices can stand in for every BVH primitive: each
+// shape kind present holds_leaf_vertices, there are triangles, and leaves test
+// four at a time.
+bool wants_leaf_vertices(const Geometry& g) {
+    if (kLeafBlock == 1 || g.triangles.empty()) return false;
+    for (ShapeKind k : kShapeKinds)
+        if (g.count(k) > 0 && !holds_leaf_vertices(k)) return false;
+    return true;
+}
+
+// The leaf-order vertices, when every position is a float exactly, written into
+// `storage` once the BVH build is done with the boxes there (sized for both); two
+// threads copy half each.
+void copy_leaf_vertices(Scene& s, ReusableStorage& storage) {
+    const Geometry& g = s.geometry;
+    if (!wants_leaf_vertices(g)) return;
+    for (const Vec3& p : g.positions)
         if (!is_float(p.x) || !is_float(p.y) || !is_float(p.z)) return;
-    const size_t n = s.bvh.prims.size();
-    boxes.resize(leaf_storage_boxes(n));
-    float* const out = reinterpret_cast<float*>(boxes.data());
-    auto copy = [&s, out](size_t begin, size_t end) {
+    const std::vector<uint32_t>& prims = s.accel.bvh.prims;
+    const size_t n = prims.size();
+    // The boxes' lifetime ends here: the bytes now hold floats.
+    float* const out = storage.emplace<float>(leaf_floats(n));
+    auto copy = [&g, &prims, out](size_t begin, size_t end) {
         for (size_t i = begin; i < end; ++i) {
-            const Triangle& t = s.triangles[s.bvh.prims[i]];
+            const Triangle& t = g.triangles[prims[i]];
             float* o = out + i * 9;
             for (int k = 0; k < 3; ++k) {
-                const Vec3& v = s.positions[t.v[k]];
+                const Vec3& v = g.positions[t.v[k]];
                 o[3 * k] = float(v.x);
                 o[3 * k + 1] = float(v.y);
                 o[3 * k + 2] = float(v.z);
             }
         }
     };
-    if (n < (1u << 16)) {
+    if (n < (1u << 16))
         copy(0, n);
-    } else {
-        std::thread helper = start_or_run([&] { copy(0, n / 2); });
-        copy(n / 2, n);
-        if (helper.joinable()) helper.join();
-    }
-    s.leaf_storage = std::move(boxes);
+    else
+        in_parallel([&] { copy(0, n / 2); }, [&] { copy(n / 2, n); });
+    s.accel.leaf_vertices = LeafVertices(std::move(storage), out, n);
 }
 
 // Builds everything, moving or releasing each mesh of `d` once it is copied.
 Scene build(SceneDesc& d, const BvhBuildOptions& bvh) {
     Scene s;
-    s.path = d.path;
-    s.background = d.background;
-    s.ambient_light = d.ambient_light;
-    s.shadow_ray_epsilon = d.shadow_ray_epsilon;
-    s.max_recursion_depth = d.max_recursion_depth;
-    for (const CameraDesc& c : d.cameras) s.cameras.push_back(make_camera(c));
-    for (const PointLightDesc& l : d.point_lights) s.lights.push_back({l.position, l.intensity});
-    for (const MaterialDesc& m : d.materials) s.materials.push_back(make_material(m));
+    SceneSetup& setup = s.setup;
+    setup.background = d.background;
+    setup.ambient_light = d.ambient_light;
+    setup.shadow_ray_epsilon = d.shadow_ray_epsilon;
+    setup.max_recursion_depth = d.max_recursion_depth;
+    for (const CameraDesc& c : d.cameras) setup.cameras.push_back(make_camera(c));
+    setup.lights = std::move(d.point_lights);
+    setup.materials = std::move(d.materials);
 
+    Geometry& g = s.geometry;
     size_t ntri = 0, nvert = 0;
     for (const MeshDesc& m : d.meshes) {
         ntri += m.indices.size() / 3;
         nvert += m.positions.size();
     }
-    if (d.meshes.size() > 1) s.positions.reserve(nvert);
-    s.triangles.reserve(ntri);
-    // Primitive boxes for the BVH: triangles first, in order, then spheres.
-    UninitVector<BuildBox> boxes;
-    // Room for the leaf-order vertices that may reuse this array (copy_leaf_vertices).
-    boxes.reserve(std::max(ntri + d.spheres.size(), leaf_storage_boxes(ntri)));
+    if (d.meshes.size() > 1) g.positions.reserve(nvert);
+    g.triangles.reserve(ntri);
+    // One allocation for the BVH's primitive boxes (boxes[id], triangles first) and
+    // afterwards the leaf-order vertices that may take their place (copy_leaf_vertices).
+    const size_t nboxes = ntri + d.spheres.size();
+    ReusableStorage storage(std::max(nboxes * sizeof(BuildBox), leaf_floats(ntri) * sizeof(float)));
+    BuildBox* const boxes = storage.emplace<BuildBox>(nboxes);
     for (size_t i = 0; i < d.meshes.size(); ++i) {
-        add_mesh(s, d.meshes[i], boxes);
+        add_mesh(g, s.report, d.meshes[i], boxes);
         std::vector<Vec3>().swap(d.meshes[i].positions);
         std::vector<uint32_t>().swap(d.meshes[i].indices);
     }
-    for (const SphereDesc& sp : d.spheres) s.spheres.push_back({sp.center, sp.radius, sp.material});
-    for (const PlaneDesc& p : d.planes) s.planes.push_back({p.point, normalize(p.normal), p.material});
+    for (const SphereDesc& sp : d.spheres) g.spheres.push_back({sp.center, sp.radius, sp.material});
+    for (const PlaneDesc& p : d.planes) g.planes.push_back({p.point, normalize(p.normal), p.material});
 
-    for (const Sphere& sp : s.spheres) boxes.push_back(sphere_box(sp));
+    // Boxes of the bounded shapes after the triangles (add_mesh made theirs).
+    add_boxes(g, g.count(ShapeKind::Triangle), boxes);
     const auto t0 = std::chrono::steady_clock::now();
-    s.bvh.build(boxes, bvh);
-    copy_leaf_vertices(s, boxes);
-    s.build_seconds = std::chrono::duration<Real>(std::chrono::steady_clock::now() - t0).count();
+    s.accel.bvh.build(boxes, g.bounded_count(), bvh);
+    copy_leaf_vertices(s, storage);
+    s.report.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return s;
 }
 

@@ -58,8 +58,9 @@ void write_image(const Image& image, const std::string& path) {
     switch (image_format_of(path)) {
         case ImageFormat::Png: return write_png(image, path);
         case ImageFormat::Ppm: return write_ppm(image, path);
-        default: throw InputError(path + ": unknown image format (the name must end in .png or .ppm)");
+        case ImageFormat::Unknown: break;
     }
+    throw InputError(path + ": unknown image format (the name must end in .png or .ppm)");
 }
 
 }  // namespace rt

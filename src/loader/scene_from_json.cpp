@@ -38,8 +38,12 @@ const char* type_name(const json& v) {
         case json::value_t::string: return "a string";
         case json::value_t::boolean: return "a boolean";
         case json::value_t::discarded: return "nothing";
-        default: return "a number";
+        case json::value_t::number_integer:
+        case json::value_t::number_unsigned:
+        case json::value_t::number_float: return "a number";
+        case json::value_t::binary: return "binary data";  // never parsed from text
     }
+    return "a number";
 }
 
 

@@ -11,11 +11,12 @@
 
 #include "rt/render.h"
 #include "rt/shading.h"
+#include "rt/threads.h"
 
 namespace rt {
 
 Image render(const Scene& scene, size_t camera_index, const RenderOptions& options, RenderStats* stats) {
-    const Camera& cam = scene.cameras.at(camera_index);
+    const Camera& cam = scene.setup.cameras.at(camera_index);
     Image img;
     img.width = cam.width;
     img.height = cam.height;
@@ -66,13 +67,16 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
     };
 
     // Without a progress callback the calling thread is worker 0; with one, it watches.
-    std::vector<std::thread> pool;
+    // A worker whose thread cannot start renders on this thread as it starts
+    // (HelperThread); the others find fewer tiles left.
+    std::vector<HelperThread> pool;
+    pool.reserve(static_cast<size_t>(threads));
     try {
-        for (int i = watch ? 0 : 1; i < threads; ++i) pool.emplace_back(work, i);
+        for (int i = watch ? 0 : 1; i < threads; ++i) pool.emplace_back([&work, i] { work(i); });
     } catch (...) {
-        // No more threads: stop the ones that started (they find no tile left), then report.
+        // Out of memory starting a thread: stop the ones that started (they find no
+        // tile left; the pool's destructor joins them), then report.
         next.store(tiles);
-        for (std::thread& t : pool) t.join();
         throw;
     }
     if (watch) {
@@ -90,7 +94,7 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
     } else {
         work(0);
     }
-    for (std::thread& t : pool) t.join();
+    for (HelperThread& t : pool) t.join();
 
     if (stats) {
         *stats = RenderStats{};

@@ -33,9 +33,10 @@ struct Integrator {
     // Ambient + Blinn-Phong diffuse and specular from every unshadowed point light.
     // `n` is the outward shading normal, also for surfaces hit from behind.
     Vec3 local(const Material& m, Vec3 p, Vec3 n, Vec3 to_eye) const {
-        Vec3 c = m.ambient * s.ambient_light;
-        for (size_t li = 0; li < s.lights.size(); ++li) {
-            const PointLight& light = s.lights[li];
+        const SceneSetup& setup = s.setup;
+        Vec3 c = m.ambient * setup.ambient_light;
+        for (size_t li = 0; li < setup.lights.size(); ++li) {
+            const PointLight& light = setup.lights[li];
             const Vec3 to_light = light.position - p;
             const Real d2 = dot(to_light, to_light);
             const Vec3 l = to_light / std::sqrt(d2);
@@ -53,7 +54,7 @@ struct Integrator {
             // hidden by that surface at random. It starts at t = 0: the references
             // count occluders right at the offset origin (ignoring those within eps,
             // tower_smooth goes from 16 to 461 pixels off).
-            const Real eps = s.shadow_ray_epsilon;
+            const Real eps = setup.shadow_ray_epsilon;
             const Vec3 so = p + n * eps;
             const Vec3 so_to_light = light.position - so;
             const Real dist = length(so_to_light);
@@ -83,39 +84,13 @@ struct Integrator {
         // which rays count as inside).
         const bool cull = opt.cull && medium == kNoMedium;
         if (!closest_hit(s, ray, 0, HUGE_VAL, cull, h))
-            return primary ? s.background : Vec3{};  // spec 3, BackgroundColor
+            return primary ? s.setup.background : Vec3{};  // spec 3, BackgroundColor
 
         const Vec3 p = ray.org + ray.dir * h.t;
-        Vec3 ng, ns;
-        uint32_t mat_id;
-        switch (h.kind) {
-            case HitKind::Triangle: {
-                const Triangle& tri = s.triangles[h.index];
-                ng = s.face_normal(h.index);
-                ns = ng;
-                if (tri.smooth) {
-                    const Vec3 n = s.vertex_normals[tri.v[0]] * h.w[0] + s.vertex_normals[tri.v[1]] * h.w[1] +
-                                   s.vertex_normals[tri.v[2]] * h.w[2];
-                    const Real len = length(n);
-                    if (len > 0) ns = n / len;
-                }
-                mat_id = tri.material;
-                break;
-            }
-            case HitKind::Sphere: {
-                const Sphere& sp = s.spheres[h.index];
-                ng = ns = (p - sp.center) / sp.radius;
-                mat_id = sp.material;
-                break;
-            }
-            default: {
-                const Plane& pl = s.planes[h.index];
-                ng = ns = pl.normal;
-                mat_id = pl.material;
-                break;
-            }
-        }
-        const Material& m = s.materials[mat_id];
+        const Surface surf = s.geometry.surface(h, p);
+        const Vec3 ng = surf.ng, ns = surf.ns;
+        const uint32_t mat_id = surf.material;
+        const Material& m = s.setup.materials[mat_id];
         const bool front = dot(ray.dir, ng) < 0;
         const Vec3 nf = front ? ns : -ns;  // shading normal facing the incoming ray
 
@@ -126,12 +101,13 @@ struct Integrator {
         // Beer's law on the segment a dielectric's interface sent inside it, internally
         // reflected ones included (reference-conventions.md, "Materials").
         const Vec3 beer = medium != kNoMedium
-                              ? beer_attenuation(s.materials[medium].absorption_coefficient, h.t)
+                              ? beer_attenuation(s.setup.materials[medium].absorption_coefficient, h.t)
                               : Vec3{1, 1, 1};
-        if (depth < s.max_recursion_depth && m.type != MaterialType::Plain) {
-            const Real eps = s.shadow_ray_epsilon;
+        if (depth < s.setup.max_recursion_depth) {
+            const Real eps = s.setup.shadow_ray_epsilon;
             const Real cos_i = -dot(ray.dir, nf);
-            const Vec3 refl_dir = normalize(ray.dir + nf * (2 * cos_i));
+            // The reflected ray, spawned on the side the incoming ray came from.
+            auto reflected = [&] { return spawn_ray(p, nf, eps, normalize(ray.dir + nf * (2 * cos_i))); };
             // Adds factor * L(r) unless the ray's weight is negligible (kMinWeight).
             auto secondary = [&](Vec3 factor, const Ray& r, int r_medium, uint64_t& counter) {
                 const Real w = weight * max_component(beer) * max_component(factor);
@@ -139,25 +115,35 @@ struct Integrator {
                 ++counter;
                 color += factor * trace(r, depth + 1, r_medium, false, w);
             };
-            if (m.type == MaterialType::Mirror) {
-                secondary(m.mirror, spawn_ray(p, nf, eps, refl_dir), kNoMedium, rays.reflection);
-            } else if (m.type == MaterialType::Conductor) {
-                const Real fr = fresnel_conductor(cos_i, m.refraction_index, m.absorption_index);
-                secondary(m.mirror * fr, spawn_ray(p, nf, eps, refl_dir), kNoMedium, rays.reflection);
-            } else {
-                const int self = static_cast<int>(mat_id);
-                const Real eta_i = front ? Real(1) : m.refraction_index;
-                const Real eta_t = front ? m.refraction_index : Real(1);
-                Real cos_t = 0;
-                const Real fr = fresnel_dielectric(cos_i, eta_i, eta_t, &cos_t);
-                // Inside this dielectric: the ray reflected off its inside, or refracted in.
-                const int refl_medium = front ? kNoMedium : self;
-                const int refr_medium = front ? self : kNoMedium;
-                secondary(m.mirror * fr, spawn_ray(p, nf, eps, refl_dir), refl_medium, rays.reflection);
-                if (fr < 1) {
-                    const Real eta = eta_i / eta_t;
-                    const Vec3 t_dir = normalize(ray.dir * eta + nf * (eta * cos_i - cos_t));
-                    secondary(Vec3{1, 1, 1} * (1 - fr), spawn_ray(p, -nf, eps, t_dir), refr_medium, rays.refraction);
+            switch (m.type) {
+                case MaterialType::Plain:
+                    // No secondary rays: MirrorReflectance on a material without _type is
+                    // ignored (reference-conventions.md, "Shading"; the akif_uslu scenes carry it).
+                    break;
+                case MaterialType::Mirror:
+                    secondary(m.mirror, reflected(), kNoMedium, rays.reflection);
+                    break;
+                case MaterialType::Conductor: {
+                    const Real fr = fresnel_conductor(cos_i, m.refraction_index, m.absorption_index);
+                    secondary(m.mirror * fr, reflected(), kNoMedium, rays.reflection);
+                    break;
+                }
+                case MaterialType::Dielectric: {
+                    const int self = static_cast<int>(mat_id);
+                    const Real eta_i = front ? Real(1) : m.refraction_index;
+                    const Real eta_t = front ? m.refraction_index : Real(1);
+                    Real cos_t = 0;
+                    const Real fr = fresnel_dielectric(cos_i, eta_i, eta_t, &cos_t);
+                    // Inside this dielectric: the ray reflected off its inside, or refracted in.
+                    const int refl_medium = front ? kNoMedium : self;
+                    const int refr_medium = front ? self : kNoMedium;
+                    secondary(m.mirror * fr, reflected(), refl_medium, rays.reflection);
+                    if (fr < 1) {
+                        const Real eta = eta_i / eta_t;
+                        const Vec3 t_dir = normalize(ray.dir * eta + nf * (eta * cos_i - cos_t));
+                        secondary(Vec3{1, 1, 1} * (1 - fr), spawn_ray(p, -nf, eps, t_dir), refr_medium, rays.refraction);
+                    }
+                    break;
                 }
             }
         }
@@ -169,8 +155,8 @@ struct Integrator {
 }  // namespace
 
 Vec3 trace_primary(const Scene& scene, const Ray& ray, const TraceOptions& options, TraceCache* cache) {
-    if (cache && cache->last_occluder.size() != scene.lights.size())
-        cache->last_occluder.assign(scene.lights.size(), kNoOccluder);
+    if (cache && cache->last_occluder.size() != scene.setup.lights.size())
+        cache->last_occluder.assign(scene.setup.lights.size(), kNoOccluder);
     RayCounts unused;
     RayCounts& rays = cache ? cache->rays : unused;
     ++rays.camera;

@@ -89,7 +89,7 @@ int main(int argc, char** argv) {
         std::vector<double> box_wall;
         for (int r = 0; r < runs; ++r) {
             const auto b0 = std::chrono::steady_clock::now();
-            rt::UninitVector<rt::BuildBox> boxes = rt::primitive_boxes(s);
+            rt::UninitVector<rt::BuildBox> boxes = rt::primitive_boxes(s.geometry);
             box_wall.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - b0).count());
             rt::Bvh bvh;
             const double c0 = cpu_seconds();
@@ -102,7 +102,7 @@ int main(int argc, char** argv) {
         }
         std::printf("%s: %zu primitives, medians of %d: boxes %.3f s, build %.3f s wall, %.3f s cpu (first %.3f s); "
                     "%zu nodes, SAH cost %.4f; fastest %.3f s wall, %.3f s cpu\n",
-                    path.c_str(), s.triangles.size() + s.spheres.size(), runs, median(box_wall), median(wall),
+                    path.c_str(), s.geometry.triangles.size() + s.geometry.spheres.size(), runs, median(box_wall), median(wall),
                     median(cpu), wall[0], nodes, cost, *std::min_element(wall.begin(), wall.end()),
                     *std::min_element(cpu.begin(), cpu.end()));
     } catch (const std::exception& e) {

@@ -77,8 +77,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     const rt::Scene scene = rt::build_scene(desc);
     const rt::TraceOptions opt{true};
     bool nan = false;
-    for (size_t c = 0; c < scene.cameras.size() && c < 2; ++c) {
-        const rt::Camera& cam = scene.cameras[c];
+    for (size_t c = 0; c < scene.setup.cameras.size() && c < 2; ++c) {
+        const rt::Camera& cam = scene.setup.cameras[c];
         const int xs[3] = {0, cam.width / 2, cam.width - 1};
         const int ys[3] = {0, cam.height / 2, cam.height - 1};
         for (int yi = 0; yi < 3; ++yi)
