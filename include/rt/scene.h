@@ -49,7 +49,7 @@ struct SceneSetup {
 //     bounds, intersect and surface, and in holds_leaf_vertices.
 //  2. include/rt/intersect.h: its ray test, beside intersect_sphere.
 //  3. src/geometry/build_scene.cpp: its array filled from the SceneDesc (build()).
-// The loader reads it into the SceneDesc (scene_desc.h, src/loader/json_loader.cpp).
+// The loader reads it into the SceneDesc (scene_desc.h, src/loader/scene_from_json.cpp).
 // A new unbounded shape also needs the planes' loops in src/bvh/traverse.cpp.
 enum class ShapeKind : uint32_t { Triangle, Sphere, Plane };
 inline constexpr ShapeKind kShapeKinds[] = {ShapeKind::Triangle, ShapeKind::Sphere, ShapeKind::Plane};
