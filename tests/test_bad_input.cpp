@@ -79,7 +79,9 @@ std::string binary_vertices(int n) {
     for (int i = 0; i < n; ++i) s += lef(float(i % 2)) + lef(float(i / 2)) + lef(-5.0f);
     return s;
 }
-std::string binary_face(uint32_t a, uint32_t b, uint32_t c) { return std::string(1, '\3') + le32(a) + le32(b) + le32(c); }
+std::string binary_face(uint32_t a, uint32_t b, uint32_t c) {
+    return std::string(1, '\3') + le32(a) + le32(b) + le32(c);
+}
 
 json scene_json() { return json::parse(kScene); }
 
@@ -92,10 +94,10 @@ std::string with(std::string s, const std::string& from, const std::string& to) 
 
 struct Case {
     std::string name;
-    std::function<json()> scene;       // the bad scene (written as bad.json)
-    std::string ply;                   // written as mesh.ply beside it
-    std::vector<std::string> expect;   // each must appear in the error line
-    std::string raw;                   // when set: bad.json's text instead of scene()
+    std::function<json()> scene;      // the bad scene (written as bad.json)
+    std::string ply;                  // written as mesh.ply beside it
+    std::vector<std::string> expect;  // each must appear in the error line
+    std::string raw;                  // when set: bad.json's text instead of scene()
 };
 
 void PrintTo(const Case& c, std::ostream* os) { *os << c.name; }
@@ -133,23 +135,26 @@ std::vector<Case> cases() {
         ply_case("ply_empty", "", {"byte 0"}),
         ply_case("ply_not_ply", "solid cube\nfacet normal 0 0 1\n", {"byte 0", "not a PLY file"}),
         ply_case("ply_unknown_format", "ply\nformat binary_middle_endian 1.0\nend_header\n", {"byte 4", "format"}),
-        ply_case("ply_unknown_type",
-                 "ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\nend_header\n0\n", {"byte 38", "quad"}),
+        ply_case("ply_unknown_type", "ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\nend_header\n0\n",
+                 {"byte 38", "quad"}),
         ply_case("ply_missing_end_header", binary_ply(4, 2, "").substr(0, 120), {"byte ", "end_header"}),
         ply_case("ply_no_vertex_element", "ply\nformat ascii 1.0\nelement face 0\nend_header\n", {"byte ", "vertex"}),
         ply_case("ply_truncated_binary_vertices", binary_ply(4, 2, v4.substr(0, 30)), {"byte "}),
         ply_case("ply_truncated_binary_faces", binary_ply(4, 2, v4 + f2.substr(0, 20)), {"byte "}),
         ply_case("ply_truncated_ascii", ascii_head + "-1 -1 -5\n1 -1 -5\n1 1 -5\n-1 1 -5\n3 0 1 2\n3 0 2",
                  {"line 15", "end of file"}),
-        ply_case("ply_huge_vertex_count", binary_ply(4000000000ull, 2, v4 + f2), {"byte ", "more than the file can hold"}),
+        ply_case("ply_huge_vertex_count", binary_ply(4000000000ull, 2, v4 + f2),
+                 {"byte ", "more than the file can hold"}),
         ply_case("ply_huge_face_count", binary_ply(4, 1ull << 62, v4 + f2), {"byte ", "more than the file can hold"}),
-        ply_case("ply_count_overflows_uint64", with(binary_ply(4, 0, v4), "vertex 4\n", "vertex 99999999999999999999999\n"),
+        ply_case("ply_count_overflows_uint64",
+                 with(binary_ply(4, 0, v4), "vertex 4\n", "vertex 99999999999999999999999\n"),
                  {"byte ", "element count"}),
         ply_case("ply_huge_ascii_count", with(ascii_head, "vertex 4\n", "vertex 123456789012\n") + "0 0 0\n",
                  {"byte ", "more than the file can hold"}),
         ply_case("ply_index_past_end_binary", binary_ply(4, 2, v4 + binary_face(0, 1, 2) + binary_face(0, 2, 4)),
                  {"byte ", "out of range"}),
-        ply_case("ply_negative_index_binary", binary_ply(4, 2, v4 + binary_face(0, 1, 2) + binary_face(0xffffffffu, 2, 3)),
+        ply_case("ply_negative_index_binary",
+                 binary_ply(4, 2, v4 + binary_face(0, 1, 2) + binary_face(0xffffffffu, 2, 3)),
                  {"byte ", "out of range"}),
         ply_case("ply_index_past_end_ascii", ascii_head + "-1 -1 -5\n1 -1 -5\n1 1 -5\n-1 1 -5\n3 0 1 2\n3 0 2 9\n",
                  {"line 15", "out of range"}),
@@ -202,14 +207,14 @@ std::vector<Case> cases() {
         edit_case("position_is_an_array", "/Scene/Cameras/Camera/Position", json::array({0, 0, 0})),
         edit_case("faces_is_null", "/Scene/Objects/Mesh/Faces", nullptr),
         edit_case("ply_file_is_a_number", "/Scene/Objects/Mesh/Faces/_plyFile", 7),
-        edit_case("ply_file_is_a_folder", "/Scene/Objects/Mesh/Faces/_plyFile", ".", {"/Scene/Objects/Mesh/Faces/_plyFile"}),
+        edit_case("ply_file_is_a_folder", "/Scene/Objects/Mesh/Faces/_plyFile", ".",
+                  {"/Scene/Objects/Mesh/Faces/_plyFile"}),
         // ---- JSON text -------------------------------------------------------------------
         raw_case("only_whitespace", "  \n\t\n", {"parse error"}),
         raw_case("top_level_array", "[1, 2, 3]", {"/"}),
         raw_case("top_level_null", "null", {"/"}),
         raw_case("binary_garbage", std::string("\x89PNG\r\n\x1a\n\0\0\0\rIHDR", 16), {"parse error"}),
-        raw_case("json_number_overflow", R"({"Scene": {"ShadowRayEpsilon": 1e999}})",
-                 {"line 1, column 32", "1e999"}),
+        raw_case("json_number_overflow", R"({"Scene": {"ShadowRayEpsilon": 1e999}})", {"line 1, column 32", "1e999"}),
         raw_case("unterminated_string", "{\"Scene\": {\"Cameras\": \"abc", {"parse error", "line 1"}),
         raw_case("deep_nesting", std::string(100000, '[') + std::string(100000, ']'), {"/"}),
     };
@@ -265,7 +270,8 @@ TEST_P(BadInput, OneLineNamingFileAndPlaceNoImageOtherSceneUnaffected) {
         if (contains(l, bad)) lines.push_back(l);
     ASSERT_EQ(lines.size(), 1u) << "expected exactly one stderr line naming " << bad << dump(r);
     EXPECT_EQ(lines[0].rfind(bad + ": ", 0), 0u) << "the line should start with the scene path" << dump(r);
-    for (const std::string& e : c.expect) EXPECT_TRUE(contains(lines[0], e)) << "the line should name '" << e << "'" << dump(r);
+    for (const std::string& e : c.expect)
+        EXPECT_TRUE(contains(lines[0], e)) << "the line should name '" << e << "'" << dump(r);
 
     // Nothing from the bad scene (no image, no temporary), the good scene's image intact.
     EXPECT_EQ(list_files(tmp / "out"), std::vector<std::string>{"good.png"}) << dump(r);

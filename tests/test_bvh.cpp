@@ -53,9 +53,12 @@ struct Answer {
 
 uint32_t global_id(const rt::Scene& s, const rt::Hit& h) {
     switch (h.kind) {
-        case rt::ShapeKind::Triangle: return h.index;
-        case rt::ShapeKind::Sphere: return static_cast<uint32_t>(s.geometry.triangles.size()) + h.index;
-        case rt::ShapeKind::Plane: return static_cast<uint32_t>(s.geometry.triangles.size() + s.geometry.spheres.size()) + h.index;
+        case rt::ShapeKind::Triangle:
+            return h.index;
+        case rt::ShapeKind::Sphere:
+            return static_cast<uint32_t>(s.geometry.triangles.size()) + h.index;
+        case rt::ShapeKind::Plane:
+            return static_cast<uint32_t>(s.geometry.triangles.size() + s.geometry.spheres.size()) + h.index;
     }
     return ~0u;
 }
@@ -68,8 +71,8 @@ Answer brute_closest(const rt::Scene& s, const rt::Ray& r, Real tmin, Real tmax,
         if (cull && rt::dot(r.dir, s.geometry.face_normal(static_cast<uint32_t>(i))) > 0) continue;
         const rt::Triangle& tri = s.geometry.triangles[i];
         Real t, w[3];
-        if (rt::intersect_triangle(p, s.geometry.positions[tri.v[0]], s.geometry.positions[tri.v[1]], s.geometry.positions[tri.v[2]], tmin, tmax,
-                                   t, w) &&
+        if (rt::intersect_triangle(p, s.geometry.positions[tri.v[0]], s.geometry.positions[tri.v[1]],
+                                   s.geometry.positions[tri.v[2]], tmin, tmax, t, w) &&
             t < a.t) {
             a.found = true;
             a.t = t;
@@ -79,7 +82,8 @@ Answer brute_closest(const rt::Scene& s, const rt::Ray& r, Real tmin, Real tmax,
     }
     for (size_t i = 0; i < s.geometry.spheres.size(); ++i, ++gid) {
         Real t;
-        if (rt::intersect_sphere(r, s.geometry.spheres[i].center, s.geometry.spheres[i].radius, tmin, tmax, t) && t < a.t) {
+        if (rt::intersect_sphere(r, s.geometry.spheres[i].center, s.geometry.spheres[i].radius, tmin, tmax, t) &&
+            t < a.t) {
             a.found = true;
             a.t = t;
             a.gid = gid;
@@ -100,8 +104,8 @@ bool brute_any(const rt::Scene& s, const rt::Ray& r, Real tmin, Real tmax) {
     const rt::RayPre p = rt::prepare(r);
     Real t, w[3];
     for (const rt::Triangle& tri : s.geometry.triangles)
-        if (rt::intersect_triangle(p, s.geometry.positions[tri.v[0]], s.geometry.positions[tri.v[1]], s.geometry.positions[tri.v[2]], tmin, tmax,
-                                   t, w))
+        if (rt::intersect_triangle(p, s.geometry.positions[tri.v[0]], s.geometry.positions[tri.v[1]],
+                                   s.geometry.positions[tri.v[2]], tmin, tmax, t, w))
             return true;
     for (const rt::Sphere& sp : s.geometry.spheres)
         if (rt::intersect_sphere(r, sp.center, sp.radius, tmin, tmax, t)) return true;
@@ -270,9 +274,9 @@ struct SoupSpec {
     int triangles;
     int spheres;
     int planes;
-    Real extent;       // primitives live in [-extent, extent]^3
-    Real size;         // typical triangle edge / sphere radius
-    bool clustered;    // pile many primitives on top of each other
+    Real extent;     // primitives live in [-extent, extent]^3
+    Real size;       // typical triangle edge / sphere radius
+    bool clustered;  // pile many primitives on top of each other
 };
 
 rt::SceneDesc random_scene(const SoupSpec& spec, Rng& rng) {
@@ -309,8 +313,10 @@ rt::SceneDesc random_scene(const SoupSpec& spec, Rng& rng) {
             const size_t j = pick(rng, ntri);
             const Vec3 a = m.positions[m.indices[3 * j]], b = m.positions[m.indices[3 * j + 1]],
                        c = m.positions[m.indices[3 * j + 2]];
-            if (rng() % 2) add_tri(b, c, a);
-            else add_tri(a, c, b);
+            if (rng() % 2)
+                add_tri(b, c, a);
+            else
+                add_tri(a, c, b);
         } else if (kind == 2) {
             // Needle: two vertices very close.
             const Vec3 a = point(), b = a + random_unit(rng) * spec.size;
@@ -322,8 +328,10 @@ rt::SceneDesc random_scene(const SoupSpec& spec, Rng& rng) {
         } else if (kind == 4) {
             // Exactly degenerate (two equal vertices, or collinear): build_scene drops them.
             const Vec3 a = point(), b = a + random_unit(rng) * spec.size;
-            if (rng() % 2) add_tri(a, b, a);
-            else add_tri(a, b, a + (b - a) * Real(2));
+            if (rng() % 2)
+                add_tri(a, b, a);
+            else
+                add_tri(a, b, a + (b - a) * Real(2));
         } else if (kind == 5) {
             // Axis-aligned triangle (flat bounding box).
             const Vec3 a = point();
@@ -374,14 +382,18 @@ void shoot(const rt::Scene& s, Checker& ck, Rng& rng, int rays, Real extent) {
         // when there are no triangles); 4: at a sphere's surface (a triangle when there are no
         // spheres); 5: axis-aligned.
         int mode = k % 6;
-        if (s.geometry.triangles.empty() && s.geometry.spheres.empty()) mode = (mode == 5) ? 5 : 0;
-        else if (mode >= 1 && mode <= 3 && s.geometry.triangles.empty()) mode = 4;
-        else if (mode == 4 && s.geometry.spheres.empty()) mode = 3;
+        if (s.geometry.triangles.empty() && s.geometry.spheres.empty())
+            mode = (mode == 5) ? 5 : 0;
+        else if (mode >= 1 && mode <= 3 && s.geometry.triangles.empty())
+            mode = 4;
+        else if (mode == 4 && s.geometry.spheres.empty())
+            mode = 3;
         if (mode == 0) {
             dir = random_unit(rng);
         } else if (mode <= 3) {
             const rt::Triangle& tri = s.geometry.triangles[pick(rng, s.geometry.triangles.size())];
-            const Vec3 a = s.geometry.positions[tri.v[0]], b = s.geometry.positions[tri.v[1]], c = s.geometry.positions[tri.v[2]];
+            const Vec3 a = s.geometry.positions[tri.v[0]], b = s.geometry.positions[tri.v[1]],
+                       c = s.geometry.positions[tri.v[2]];
             Vec3 target;
             if (mode == 1) {
                 target = (rng() % 2) ? a : b;  // vertex
@@ -416,7 +428,9 @@ void shoot(const rt::Scene& s, Checker& ck, Rng& rng, int rays, Real extent) {
         // Shadow-ray style: from a surface point towards a random point, the interval ending there.
         if (!s.geometry.triangles.empty() && k % 2 == 0) {
             const rt::Triangle& tri = s.geometry.triangles[pick(rng, s.geometry.triangles.size())];
-            const Vec3 p = (s.geometry.positions[tri.v[0]] + s.geometry.positions[tri.v[1]] + s.geometry.positions[tri.v[2]]) / Real(3);
+            const Vec3 p =
+                (s.geometry.positions[tri.v[0]] + s.geometry.positions[tri.v[1]] + s.geometry.positions[tri.v[2]]) /
+                Real(3);
             const Vec3 to = org - p;
             const Real d = rt::length(to);
             if (d > 0) ck.any({p, to / d}, Real(1e-3), d);
@@ -441,7 +455,8 @@ void run_soup(const SoupSpec& spec, int rays, bool float_vertices = false) {
     const rt::Scene s = rt::build_scene(std::move(d));
     check_structure(s);
     // The leaf-order copy exists exactly when it changes no number (scene.h).
-    const bool want_copy = float_vertices && rt::kLeafBlock > 1 && s.geometry.spheres.empty() && !s.geometry.triangles.empty();
+    const bool want_copy =
+        float_vertices && rt::kLeafBlock > 1 && s.geometry.spheres.empty() && !s.geometry.triangles.empty();
     EXPECT_EQ(s.accel.leaf_vertices.data() != nullptr, want_copy);
     if (want_copy) {  // the copy holds each leaf triangle's vertices
         ASSERT_GE(s.accel.leaf_vertices.triangles() * 9 * sizeof(float), s.accel.bvh.prims.size() * 9 * sizeof(float));
@@ -641,8 +656,7 @@ void check_official(const std::string& rel, int rays, size_t min_triangles) {
                      << " not tested ***";
     const std::string path = shared + "/scenes/hw1/" + rel;
     struct stat st;
-    if (::stat(path.c_str(), &st) != 0)
-        GTEST_SKIP() << "*** SKIPPED: " << path << " is missing ***";
+    if (::stat(path.c_str(), &st) != 0) GTEST_SKIP() << "*** SKIPPED: " << path << " is missing ***";
     const rt::Scene s = rt::build_scene(rt::load_scene(path));
     ASSERT_GE(s.geometry.triangles.size(), min_triangles) << path;
     check_structure(s);
@@ -661,7 +675,8 @@ void check_official(const std::string& rel, int rays, size_t min_triangles) {
         if (k % 3 == 0) {
             // Camera rays through random pixels.
             const rt::Camera& cam = s.setup.cameras[pick(rng, s.setup.cameras.size())];
-            r = cam.primary_ray(static_cast<int>(pick(rng, size_t(cam.width))), static_cast<int>(pick(rng, size_t(cam.height))));
+            r = cam.primary_ray(static_cast<int>(pick(rng, size_t(cam.width))),
+                                static_cast<int>(pick(rng, size_t(cam.height))));
         } else {
             const Vec3 org{lo.x + size.x * uniform(rng, -0.5, 1.5), lo.y + size.y * uniform(rng, -0.5, 1.5),
                            lo.z + size.z * uniform(rng, -0.5, 1.5)};

@@ -144,9 +144,7 @@ json with_cameras(json j, const std::vector<std::pair<std::string, std::string>>
     return j;
 }
 
-void set_at(json& j, const std::string& pointer, const json& value) {
-    j[json::json_pointer(pointer)] = value;
-}
+void set_at(json& j, const std::string& pointer, const json& value) { j[json::json_pointer(pointer)] = value; }
 
 void erase_at(json& j, const std::string& pointer) {
     json::json_pointer p(pointer);
@@ -160,8 +158,7 @@ std::string write_scene(const std::string& dir, const std::string& name, const j
 }
 
 std::string lower(std::string s) {
-    std::transform(s.begin(), s.end(), s.begin(),
-                   [](unsigned char c) { return char(std::tolower(c)); });
+    std::transform(s.begin(), s.end(), s.begin(), [](unsigned char c) { return char(std::tolower(c)); });
     return s;
 }
 
@@ -169,9 +166,7 @@ bool contains(const std::string& haystack, const std::string& needle) {
     return haystack.find(needle) != std::string::npos;
 }
 
-bool starts_with(const std::string& s, const std::string& prefix) {
-    return s.compare(0, prefix.size(), prefix) == 0;
-}
+bool starts_with(const std::string& s, const std::string& prefix) { return s.compare(0, prefix.size(), prefix) == 0; }
 
 int count_lines_containing(const std::string& text, const std::string& needle) {
     int n = 0;
@@ -181,8 +176,8 @@ int count_lines_containing(const std::string& text, const std::string& needle) {
 }
 
 std::string dump(const RunResult& r) {
-    return "\n--- exit " + std::to_string(r.exit_code) + " --- stderr ---\n" + r.err +
-           "--- stdout ---\n" + r.out + "---";
+    return "\n--- exit " + std::to_string(r.exit_code) + " --- stderr ---\n" + r.err + "--- stdout ---\n" + r.out +
+           "---";
 }
 
 std::string join(const std::vector<std::string>& v) {
@@ -196,8 +191,8 @@ std::string join(const std::vector<std::string>& v) {
     rt::Image img;
     if (!load_png(path, img)) return ::testing::AssertionFailure() << path << " is not a readable PNG";
     if (img.width != width || img.height != height)
-        return ::testing::AssertionFailure() << path << " is " << img.width << "x" << img.height
-                                             << ", expected " << width << "x" << height;
+        return ::testing::AssertionFailure()
+               << path << " is " << img.width << "x" << img.height << ", expected " << width << "x" << height;
     return ::testing::AssertionSuccess();
 }
 
@@ -335,10 +330,10 @@ TEST(Cli, HelpNamesEveryOption) {
     RunResult r = run_raytracer({"--help"});
     ASSERT_EQ(r.exit_code, 0) << dump(r);
     EXPECT_EQ(r.err, "");
-    for (const char* option : {"-o, --output-dir DIR", "-j, --threads N", "--cull, --no-cull", "--rounding MODE",
-                               "--stats FILE", "-q, --quiet", "-h, --help", "--version", "--max-depth N",
-                               "--epsilon-scale F", "--bvh-leaf N", "--bvh-bins N", "--bvh-split MODE", "--bvh-cost F",
-                               "--bvh-block N", "exit status"})
+    for (const char* option :
+         {"-o, --output-dir DIR", "-j, --threads N", "--cull, --no-cull", "--rounding MODE", "--stats FILE",
+          "-q, --quiet", "-h, --help", "--version", "--max-depth N", "--epsilon-scale F", "--bvh-leaf N",
+          "--bvh-bins N", "--bvh-split MODE", "--bvh-cost F", "--bvh-block N", "exit status"})
         EXPECT_TRUE(contains(r.out, option)) << option << dump(r);
     RunResult v = run_raytracer({"--version"});
     EXPECT_EQ(v.out, "raytracer 1.0\n") << dump(v);
@@ -362,8 +357,7 @@ TEST(Cli, RendersOnePngPerCameraIntoCurrentDirectory) {
     ASSERT_EQ(r.exit_code, 0) << dump(r);
     EXPECT_TRUE(is_png(tmp / "first_cam.png", 24, 16));
     EXPECT_TRUE(is_png(tmp / "second_cam.png", 16, 8));
-    EXPECT_EQ(list_files(tmp.path()),
-              (std::vector<std::string>{"first_cam.png", "scene.json", "second_cam.png"}))
+    EXPECT_EQ(list_files(tmp.path()), (std::vector<std::string>{"first_cam.png", "scene.json", "second_cam.png"}))
         << "unexpected or leftover files" << dump(r);
 }
 
@@ -440,8 +434,7 @@ TEST(Cli, OutputDoesNotDependOnThreadCount) {
     TempDir tmp;
     write_scene(tmp.path(), "scene.json", j);
 
-    std::vector<std::vector<std::string>> runs = {
-        {"-j", "1"}, {"-j", "3"}, {"--threads", "2"}, {"-j", "7"}};
+    std::vector<std::vector<std::string>> runs = {{"-j", "1"}, {"-j", "3"}, {"--threads", "2"}, {"-j", "7"}};
     std::vector<std::string> bytes;
     for (size_t i = 0; i < runs.size(); ++i) {
         std::string out = tmp / ("out" + std::to_string(i));
@@ -600,8 +593,7 @@ BadCase raw(const std::string& name, const std::optional<std::string>& text) {
     return {name, [text] { return text; }, ""};
 }
 
-BadCase edited(const std::string& name, const std::string& pointer, const json& value,
-               const std::string& expect = "") {
+BadCase edited(const std::string& name, const std::string& pointer, const json& value, const std::string& expect = "") {
     return {name,
             [pointer, value] {
                 json j = sample_scene("bad.png");
@@ -639,12 +631,9 @@ std::vector<BadCase> bad_cases() {
         edited("infinite_radius", "/Scene/Objects/Sphere/0/Radius", "inf"),
         edited("zero_resolution", "/Scene/Cameras/Camera/ImageResolution", "0 16"),
         edited("negative_resolution", "/Scene/Cameras/Camera/ImageResolution", "16 -4"),
-        edited("vertex_id_zero", "/Scene/Objects/Mesh/Faces/_data", "3 1 2 1 3 0",
-               "/Scene/Objects/Mesh/Faces"),
-        edited("vertex_id_past_end", "/Scene/Objects/Mesh/Faces/_data", "3 1 2 1 3 11",
-               "/Scene/Objects/Mesh/Faces"),
-        edited("faces_not_multiple_of_3", "/Scene/Objects/Mesh/Faces/_data", "3 1 2 1 3",
-               "/Scene/Objects/Mesh/Faces"),
+        edited("vertex_id_zero", "/Scene/Objects/Mesh/Faces/_data", "3 1 2 1 3 0", "/Scene/Objects/Mesh/Faces"),
+        edited("vertex_id_past_end", "/Scene/Objects/Mesh/Faces/_data", "3 1 2 1 3 11", "/Scene/Objects/Mesh/Faces"),
+        edited("faces_not_multiple_of_3", "/Scene/Objects/Mesh/Faces/_data", "3 1 2 1 3", "/Scene/Objects/Mesh/Faces"),
         edited("triangle_vertex_past_end", "/Scene/Objects/Triangle/Indices", "5 6 99"),
         edited("sphere_center_past_end", "/Scene/Objects/Sphere/0/Center", "11"),
         edited("material_id_past_end", "/Scene/Objects/Triangle/Material", "3"),
@@ -653,8 +642,7 @@ std::vector<BadCase> bad_cases() {
         edited("unknown_material_type", "/Scene/Materials/Material/1/_type", "glowing"),
         edited("malformed_specular", "/Scene/Materials/Material/0/SpecularReflectance", "1 1"),
         edited("null_ambient", "/Scene/Materials/Material/1/AmbientReflectance", nullptr),
-        edited("missing_ply_file", "/Scene/Objects/Mesh/Faces", json{{"_plyFile", "nothere.ply"}},
-               "nothere.ply"),
+        edited("missing_ply_file", "/Scene/Objects/Mesh/Faces", json{{"_plyFile", "nothere.ply"}}, "nothere.ply"),
         edited("faces_without_data", "/Scene/Objects/Mesh/Faces", json{{"_type", "triangle"}}),
     };
 }

@@ -148,8 +148,7 @@ public:
     void TearDown() override {
         std::vector<Result> rows = results();
         if (rows.empty()) return;
-        std::sort(rows.begin(), rows.end(),
-                  [](const Result& a, const Result& b) { return a.line < b.line; });
+        std::sort(rows.begin(), rows.end(), [](const Result& a, const Result& b) { return a.line < b.line; });
         int within_fail = 0, within_tight = 0;
         std::ostringstream os;
         os << "\n## Conformance against the reference images\n\n"
@@ -165,21 +164,19 @@ public:
             if (d.pct_over_1 <= kFailPct) ++within_fail;
             if (tight) ++within_tight;
             os << "| " << r.image << " | " << d.max_diff << " | " << fmt(d.mean_diff, 4) << " | "
-               << fmt(d.pct_over_1, 3) << " | "
-               << (std::isinf(d.psnr) ? std::string("inf") : fmt(d.psnr, 2) + " dB") << " | "
-               << (tight ? "yes" : (d.pct_over_1 <= kFailPct ? "no" : "NO (fails)")) << " |\n";
+               << fmt(d.pct_over_1, 3) << " | " << (std::isinf(d.psnr) ? std::string("inf") : fmt(d.psnr, 2) + " dB")
+               << " | " << (tight ? "yes" : (d.pct_over_1 <= kFailPct ? "no" : "NO (fails)")) << " |\n";
         }
         const size_t total = complete_count();
-        os << "\n" << within_fail << "/" << total << " within 0.2%, " << within_tight << "/"
-           << total << " within 0.05%";
+        os << "\n"
+           << within_fail << "/" << total << " within 0.2%, " << within_tight << "/" << total << " within 0.05%";
         if (rows.size() != total) os << " (" << rows.size() << " of " << total << " images rendered)";
         os << "\n";
         std::cout << os.str() << std::flush;
     }
 };
 
-[[maybe_unused]] ::testing::Environment* const g_report =
-    ::testing::AddGlobalTestEnvironment(new ConformanceReport);
+[[maybe_unused]] ::testing::Environment* const g_report = ::testing::AddGlobalTestEnvironment(new ConformanceReport);
 
 // ---- Scenes, loaded and built once, released after their last image -----------
 
@@ -340,9 +337,9 @@ TEST_P(ConformanceImage, MatchesReference) {
 
     if (ours.width != ref.width || ours.height != ref.height ||
         ours.rgb.size() != size_t(ours.width) * size_t(ours.height) * 3) {
-        rec.error = "rendered " + std::to_string(ours.width) + "x" + std::to_string(ours.height) +
-                    " (" + std::to_string(ours.rgb.size()) + " bytes), reference " +
-                    std::to_string(ref.width) + "x" + std::to_string(ref.height);
+        rec.error = "rendered " + std::to_string(ours.width) + "x" + std::to_string(ours.height) + " (" +
+                    std::to_string(ours.rgb.size()) + " bytes), reference " + std::to_string(ref.width) + "x" +
+                    std::to_string(ref.height);
         FAIL() << row.image << ": " << rec.error;
     }
 
@@ -409,6 +406,5 @@ TEST_P(ConformanceIncomplete, LoaderThrowsInputError) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(HW1, ConformanceIncomplete, ::testing::ValuesIn(rows_where(false)),
-                         param_name);
+INSTANTIATE_TEST_SUITE_P(HW1, ConformanceIncomplete, ::testing::ValuesIn(rows_where(false)), param_name);
 GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(ConformanceIncomplete);

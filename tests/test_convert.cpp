@@ -96,9 +96,10 @@ std::string canonical(const std::string& path) {
         const rt::MeshDesc &x = a.meshes[i], &y = b.meshes[i];
         bool positions = x.positions.size() == y.positions.size();
         for (size_t k = 0; positions && k < x.positions.size(); ++k) positions = same(x.positions[k], y.positions[k]);
-        const bool sources = same_file ? x.source == y.source
-                                       : (x.source.rfind("/Scene", 0) == 0 ? x.source == y.source
-                                                                           : canonical(x.source) == canonical(y.source));
+        const bool sources = same_file
+                                 ? x.source == y.source
+                                 : (x.source.rfind("/Scene", 0) == 0 ? x.source == y.source
+                                                                     : canonical(x.source) == canonical(y.source));
         if (x.material != y.material || x.shading != y.shading || !positions || x.indices != y.indices || !sources)
             differ("mesh " + std::to_string(i) + " (" + x.source + " vs " + y.source + ")");
     }
@@ -448,7 +449,8 @@ TEST(ObjImport, MissingMtlGivesTheDefaultMaterialAndAWarning) {
 TEST(ObjImport, UnknownMaterialNameIsAWarning) {
     TempDir tmp;
     write_text(tmp / "b.mtl", "newmtl known\nKd 1 0 0\n");
-    write_text(tmp / "b.obj", "mtllib b.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl known\nf 1 2 3\nusemtl other\nf 3 2 1\n");
+    write_text(tmp / "b.obj",
+               "mtllib b.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nusemtl known\nf 1 2 3\nusemtl other\nf 3 2 1\n");
     const Imported im = import(tmp, "b.obj");
     EXPECT_EQ(im.scene.materials.size(), 2u);
     EXPECT_TRUE(any_contains(im.result.warnings, "'other'")) << ::testing::PrintToString(im.result.warnings);
@@ -521,9 +523,11 @@ TEST(ObjImport, BadInputIsOneLineError) {
     const std::string v3 = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
     for (const Case& c : std::vector<Case>{
              {v3 + "f 1 2 3\nf 1 2 4\n", "line 5: vertex index out of range in 'f 1 2 4' (the file has 3 vertices)"},
-             {v3 + "f 1 2 3\n\nf -4 1 2\n", "line 6: vertex index out of range in 'f -4 1 2' (the file has 3 vertices)"},
+             {v3 + "f 1 2 3\n\nf -4 1 2\n",
+              "line 6: vertex index out of range in 'f -4 1 2' (the file has 3 vertices)"},
              {v3 + "f 1 2 3 9\n", "line 4: vertex index out of range in 'f 1 2 3 9' (the file has 3 vertices)"},
-             {v3 + "vn 0 0 1\nf 1//1 2//2 3//1\n", "line 5: normal index out of range in 'f 1//1 2//2 3//1' (the file has 1 normals)"},
+             {v3 + "vn 0 0 1\nf 1//1 2//2 3//1\n",
+              "line 5: normal index out of range in 'f 1//1 2//2 3//1' (the file has 1 normals)"},
              {v3 + "f 0 1 2\n", "line 4: bad face: a vertex index is 0 or not a number"},
              {v3, "no faces"},
              {"", "no faces"},
@@ -643,9 +647,14 @@ TEST(ConvertCli, UsageAndHelp) {
     EXPECT_TRUE(contains(r.out, "usage: rtconvert"));
     r = run_program(rtconvert_path(), {"--version"});
     EXPECT_EQ(r.exit_code, 0);
-    for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
-             {}, {"a.xml"}, {"a.xml", "b.json", "c.json"}, {"--bogus", "a.xml", "b.json"},
-             {"--shading", "wavy", "a.obj", "b.json"}, {"--size", "10", "a.obj", "b.json"}, {"--size"}}) {
+    for (const std::vector<std::string>& args :
+         std::vector<std::vector<std::string>>{{},
+                                               {"a.xml"},
+                                               {"a.xml", "b.json", "c.json"},
+                                               {"--bogus", "a.xml", "b.json"},
+                                               {"--shading", "wavy", "a.obj", "b.json"},
+                                               {"--size", "10", "a.obj", "b.json"},
+                                               {"--size"}}) {
         SCOPED_TRACE(::testing::PrintToString(args));
         r = run_program(rtconvert_path(), args);
         EXPECT_EQ(r.exit_code, 2) << r.err;
@@ -667,8 +676,10 @@ TEST(ConvertCli, BadInputIsOneLineAndWritesNothing) {
     for (const Case& c : std::vector<Case>{
              {{"broken.xml", "out.json"}, "broken.xml: line 3, column 3: start-end tags mismatch"},
              {{"broken.json", "out.xml"}, "broken.json: parse error at line 1, column 15: "},
-             {{"huge.json", "out.xml"}, "huge.json: line 1, column 11: number overflow parsing '1e999' (not a finite number)"},
-             {{"bad.obj", "out.json"}, "bad.obj: line 2: vertex index out of range in 'f 1 2 3' (the file has 1 vertices)"},
+             {{"huge.json", "out.xml"},
+              "huge.json: line 1, column 11: number overflow parsing '1e999' (not a finite number)"},
+             {{"bad.obj", "out.json"},
+              "bad.obj: line 2: vertex index out of range in 'f 1 2 3' (the file has 1 vertices)"},
              {{"missing.xml", "out.json"}, "missing.xml: cannot open: No such file or directory"},
              {{"ok.json", "out.txt"}, "out.txt: unknown output format (the name must end in .json, .xml or .obj)"},
              {{"ok.json", "ok.json"}, "ok.json: is the input file; choose another output name"},
@@ -680,7 +691,8 @@ TEST(ConvertCli, BadInputIsOneLineAndWritesNothing) {
         const std::vector<std::string> lines = split_lines(r.err);
         ASSERT_EQ(lines.size(), 1u) << r.err;
         EXPECT_EQ(lines[0].substr(0, c.error.size()), c.error);
-        EXPECT_EQ(list_files(tmp.path()), (std::vector<std::string>{"bad.obj", "broken.json", "broken.xml", "huge.json", "ok.json"}));
+        EXPECT_EQ(list_files(tmp.path()),
+                  (std::vector<std::string>{"bad.obj", "broken.json", "broken.xml", "huge.json", "ok.json"}));
     }
 }
 

@@ -378,7 +378,7 @@ TEST(GeometryTriangle, TRangeIsOpen) {
     // The hit is at t = 1.
     const rt::RayPre p = rt::prepare({{0.25, 0.25, 1}, {0, 0, -1}});
     Real t = -1, w[3];
-    EXPECT_FALSE(rt::intersect_triangle(p, kA, kB, kC, 0, 1, t, w));      // tmax = t excluded
+    EXPECT_FALSE(rt::intersect_triangle(p, kA, kB, kC, 0, 1, t, w));  // tmax = t excluded
     EXPECT_TRUE(rt::intersect_triangle(p, kA, kB, kC, 0, 1.0001, t, w));
     EXPECT_FALSE(rt::intersect_triangle(p, kA, kB, kC, 1, HUGE_VAL, t, w));  // tmin = t excluded
     EXPECT_TRUE(rt::intersect_triangle(p, kA, kB, kC, 0.9999, HUGE_VAL, t, w));
@@ -437,8 +437,7 @@ TEST(GeometryPlane, BothSides) {
     ASSERT_TRUE(rt::intersect_plane({{0, 0, -3}, {0, 0, 1}}, {0, 0, 0}, {0, 0, 1}, 0, HUGE_VAL, t));
     EXPECT_EQ(t, 3);
     // Oblique: plane y = -1 (point (7,-1,2)), from (0,1,0) along (0,-1,1)/sqrt2: distance 2, t = 2 sqrt2.
-    ASSERT_TRUE(rt::intersect_plane({{0, 1, 0}, rt::normalize(Vec3{0, -1, 1})}, {7, -1, 2}, {0, 1, 0}, 0,
-                                    HUGE_VAL, t));
+    ASSERT_TRUE(rt::intersect_plane({{0, 1, 0}, rt::normalize(Vec3{0, -1, 1})}, {7, -1, 2}, {0, 1, 0}, 0, HUGE_VAL, t));
     EXPECT_NEAR(t, 2 * std::sqrt(Real(2)), kTol * 4);
 }
 
@@ -447,8 +446,8 @@ TEST(GeometryPlane, ParallelBehindAndRange) {
     EXPECT_FALSE(rt::intersect_plane({{0, 0, 5}, {1, 0, 0}}, {0, 0, 0}, {0, 0, 1}, 0, HUGE_VAL, t));  // parallel
     EXPECT_FALSE(rt::intersect_plane({{0, 0, 0}, {1, 0, 0}}, {0, 0, 0}, {0, 0, 1}, 0, HUGE_VAL, t));  // in plane
     EXPECT_FALSE(rt::intersect_plane({{0, 0, 5}, {0, 0, 1}}, {0, 0, 0}, {0, 0, 1}, 0, HUGE_VAL, t));  // behind
-    EXPECT_FALSE(rt::intersect_plane({{0, 0, 5}, {0, 0, -1}}, {0, 0, 0}, {0, 0, 1}, 0, 5, t));  // tmax open
-    EXPECT_FALSE(rt::intersect_plane({{0, 0, 5}, {0, 0, -1}}, {0, 0, 0}, {0, 0, 1}, 5, 9, t));  // tmin open
+    EXPECT_FALSE(rt::intersect_plane({{0, 0, 5}, {0, 0, -1}}, {0, 0, 0}, {0, 0, 1}, 0, 5, t));        // tmax open
+    EXPECT_FALSE(rt::intersect_plane({{0, 0, 5}, {0, 0, -1}}, {0, 0, 0}, {0, 0, 1}, 5, 9, t));        // tmin open
     EXPECT_TRUE(rt::intersect_plane({{0, 0, 5}, {0, 0, -1}}, {0, 0, 0}, {0, 0, 1}, 4.999, 5.001, t));
     EXPECT_EQ(t, 5);
 }
@@ -473,9 +472,9 @@ TEST(GeometryScene, CullingIgnoresBackFacesOnly) {
     EXPECT_NEAR(s.geometry.face_normal(0).z, 1, kTol);
     rt::Hit h;
     const rt::Ray down{{0.25, 0.25, 1}, {0, 0, -1}}, up{{0.25, 0.25, -1}, {0, 0, 1}};
-    EXPECT_TRUE(rt::closest_hit(s, down, 0, HUGE_VAL, true, h));   // front face
-    EXPECT_FALSE(rt::closest_hit(s, up, 0, HUGE_VAL, true, h));    // back face, culled
-    EXPECT_TRUE(rt::closest_hit(s, up, 0, HUGE_VAL, false, h));    // back face, not culled
+    EXPECT_TRUE(rt::closest_hit(s, down, 0, HUGE_VAL, true, h));  // front face
+    EXPECT_FALSE(rt::closest_hit(s, up, 0, HUGE_VAL, true, h));   // back face, culled
+    EXPECT_TRUE(rt::closest_hit(s, up, 0, HUGE_VAL, false, h));   // back face, not culled
     EXPECT_EQ(h.t, 1);
     EXPECT_TRUE(rt::any_hit(s, up, 0, HUGE_VAL)) << "shadow rays never cull";
 }
@@ -532,7 +531,7 @@ struct Topology {
     };
     std::vector<Edge> shared;
     std::vector<std::vector<std::pair<uint32_t, uint32_t>>> link;  // per vertex
-    bool consistent = true;  // every shared edge is used once in each direction
+    bool consistent = true;                                        // every shared edge is used once in each direction
 };
 
 Topology topology(const std::vector<uint32_t>& idx, size_t nverts) {
@@ -605,7 +604,8 @@ int shoot_through_edges_and_vertices(const rt::Scene& s, const std::vector<Vec3>
             fair = vertex_is_covered(pos, topo, v, rt::normalize(target - org));
             must_have[0] = must_have[1] = v;
         } else {
-            const Topology::Edge& e = topo.shared[std::uniform_int_distribution<size_t>(0, topo.shared.size() - 1)(rng)];
+            const Topology::Edge& e =
+                topo.shared[std::uniform_int_distribution<size_t>(0, topo.shared.size() - 1)(rng)];
             const Real f = uniform(rng, 0, 1);
             target = pos[e.a] + (pos[e.b] - pos[e.a]) * f;
             org = make_origin(rng, target);
@@ -634,8 +634,8 @@ int shoot_through_edges_and_vertices(const rt::Scene& s, const std::vector<Vec3>
         }
         if (!hit || !(around || h.t <= dist * (1 + kLoose))) {
             if (++misses <= 5)
-                ADD_FAILURE() << "ray " << k << " from (" << org.x << ", " << org.y << ", " << org.z
-                              << ") through (" << target.x << ", " << target.y << ", " << target.z << ") "
+                ADD_FAILURE() << "ray " << k << " from (" << org.x << ", " << org.y << ", " << org.z << ") through ("
+                              << target.x << ", " << target.y << ", " << target.z << ") "
                               << (hit ? "hit too far, t = " + std::to_string(h.t) : std::string("missed"))
                               << ", distance " << dist;
         }
@@ -652,14 +652,16 @@ TEST(GeometryWatertight, JitteredGridThroughEdgesAndVertices) {
     rt::MeshDesc m;
     for (int j = 0; j <= n; ++j)
         for (int i = 0; i <= n; ++i)
-            m.positions.push_back({Real(i) + uniform(rng, -0.3, 0.3), Real(j) + uniform(rng, -0.3, 0.3),
-                                   uniform(rng, -0.5, 0.5)});
+            m.positions.push_back(
+                {Real(i) + uniform(rng, -0.3, 0.3), Real(j) + uniform(rng, -0.3, 0.3), uniform(rng, -0.5, 0.5)});
     auto id = [&](int i, int j) { return static_cast<uint32_t>(j * (n + 1) + i); };
     for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {
             const uint32_t a = id(i, j), b = id(i + 1, j), c = id(i + 1, j + 1), e = id(i, j + 1);
-            if (rng() & 1) m.indices.insert(m.indices.end(), {a, b, c, a, c, e});  // diagonal a-c
-            else m.indices.insert(m.indices.end(), {a, b, e, b, c, e});              // diagonal b-e
+            if (rng() & 1)
+                m.indices.insert(m.indices.end(), {a, b, c, a, c, e});  // diagonal a-c
+            else
+                m.indices.insert(m.indices.end(), {a, b, e, b, c, e});  // diagonal b-e
         }
     rt::SceneDesc d = empty_desc();
     d.meshes.push_back(m);
@@ -690,8 +692,8 @@ TEST(GeometryWatertight, JitteredGridAxisAlignedRays) {
     rt::MeshDesc m;
     for (int j = 0; j <= n; ++j)
         for (int i = 0; i <= n; ++i)
-            m.positions.push_back({Real(i) + uniform(rng, -0.3, 0.3), Real(j) + uniform(rng, -0.3, 0.3),
-                                   uniform(rng, -0.5, 0.5)});
+            m.positions.push_back(
+                {Real(i) + uniform(rng, -0.3, 0.3), Real(j) + uniform(rng, -0.3, 0.3), uniform(rng, -0.5, 0.5)});
     auto id = [&](int i, int j) { return static_cast<uint32_t>(j * (n + 1) + i); };
     for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {
@@ -799,8 +801,8 @@ TEST(GeometryWatertight, ClosedMeshRandomRaysFromInsideAlwaysHit) {
         // The surface lies between radius 0.92 and 1.08 (chords make it a little nearer).
         if (!hit || !(h.t > 0.05 && h.t < 2)) {
             if (++misses <= 5)
-                ADD_FAILURE() << "ray from (" << org.x << ", " << org.y << ", " << org.z << ") along (" << dir.x
-                              << ", " << dir.y << ", " << dir.z << ") " << (hit ? "hit at a wrong t" : "escaped");
+                ADD_FAILURE() << "ray from (" << org.x << ", " << org.y << ", " << org.z << ") along (" << dir.x << ", "
+                              << dir.y << ", " << dir.z << ") " << (hit ? "hit at a wrong t" : "escaped");
         }
     }
     EXPECT_EQ(misses, 0);

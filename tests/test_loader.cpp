@@ -96,8 +96,8 @@ const char* const kSample = R"({
 })";
 
 // The sample's VertexData, 0-based.
-const Vec3 kSampleVerts[9] = {{-0.5, 0.5, -2},  {-0.5, -0.5, -2}, {0.5, -0.5, -2}, {0.5, 0.5, -2},  {0.75, 0.75, -2},
-                              {1, 0.75, -2},    {0.875, 1, -2},   {-0.875, 1, -2}, {0, -0.5, 0}};
+const Vec3 kSampleVerts[9] = {{-0.5, 0.5, -2}, {-0.5, -0.5, -2}, {0.5, -0.5, -2}, {0.5, 0.5, -2}, {0.75, 0.75, -2},
+                              {1, 0.75, -2},   {0.875, 1, -2},   {-0.875, 1, -2}, {0, -0.5, 0}};
 
 rt::SceneDesc parse(const std::string& text) { return rt::parse_scene(text, kPath); }
 json sample() { return json::parse(kSample); }
@@ -286,7 +286,8 @@ TEST(LoaderValid, SingleObjectAndArrayFormsAgree) {
     for (const char* key : {"Camera"}) s["Cameras"][key] = json::array({s["Cameras"][key]});
     s["Lights"]["PointLight"] = json::array({s["Lights"]["PointLight"]});
     s["Materials"]["Material"] = json::array({s["Materials"]["Material"]});
-    for (const char* key : {"Mesh", "Triangle", "Sphere", "Plane"}) s["Objects"][key] = json::array({s["Objects"][key]});
+    for (const char* key : {"Mesh", "Triangle", "Sphere", "Plane"})
+        s["Objects"][key] = json::array({s["Objects"][key]});
     const rt::SceneDesc arrays = parse(j.dump());
     expect_same(single, arrays);
     EXPECT_TRUE(arrays.warnings.empty());
@@ -337,13 +338,26 @@ TEST(LoaderValid, MaterialIdsResolveById) {
 TEST(LoaderValid, MaterialTypes) {
     json j = sample();
     json mats = json::array();
-    mats.push_back({{"_id", "1"}, {"_type", "mirror"}, {"AmbientReflectance", "0 0 0"}, {"DiffuseReflectance", "0 0 0"},
-                    {"SpecularReflectance", "0 0 0"}, {"MirrorReflectance", "0.5 0.6 0.7"}});
-    mats.push_back({{"_id", "2"}, {"_type", "conductor"}, {"AmbientReflectance", "0 0 0"},
-                    {"DiffuseReflectance", "0 0 0"}, {"SpecularReflectance", "0 0 0"},
-                    {"MirrorReflectance", "1 0.8 0.4"}, {"RefractionIndex", "0.37"}, {"AbsorptionIndex", "2.82"}});
-    mats.push_back({{"_id", "3"}, {"_type", "dielectric"}, {"AmbientReflectance", "0 0 0"},
-                    {"DiffuseReflectance", "0 0 0"}, {"SpecularReflectance", "0 0 0"}, {"RefractionIndex", "1.5"},
+    mats.push_back({{"_id", "1"},
+                    {"_type", "mirror"},
+                    {"AmbientReflectance", "0 0 0"},
+                    {"DiffuseReflectance", "0 0 0"},
+                    {"SpecularReflectance", "0 0 0"},
+                    {"MirrorReflectance", "0.5 0.6 0.7"}});
+    mats.push_back({{"_id", "2"},
+                    {"_type", "conductor"},
+                    {"AmbientReflectance", "0 0 0"},
+                    {"DiffuseReflectance", "0 0 0"},
+                    {"SpecularReflectance", "0 0 0"},
+                    {"MirrorReflectance", "1 0.8 0.4"},
+                    {"RefractionIndex", "0.37"},
+                    {"AbsorptionIndex", "2.82"}});
+    mats.push_back({{"_id", "3"},
+                    {"_type", "dielectric"},
+                    {"AmbientReflectance", "0 0 0"},
+                    {"DiffuseReflectance", "0 0 0"},
+                    {"SpecularReflectance", "0 0 0"},
+                    {"RefractionIndex", "1.5"},
                     {"AbsorptionCoefficient", "0.01 0.02 0.03"}});
     j["Scene"]["Materials"]["Material"] = mats;
     const rt::SceneDesc d = parse(j.dump());
@@ -362,9 +376,14 @@ TEST(LoaderValid, LookAtCameraExtents) {
     // FovY 60, NearDistance 2, 400 x 200: top = 2 tan(30 deg) = 2 / sqrt(3) = 1.1547005,
     // right = top * 400 / 200 = 2.3094011; left and bottom mirror them.
     json j = sample();
-    j["Scene"]["Cameras"]["Camera"] = {{"_id", "1"},          {"_type", "lookAt"},     {"Position", "1 2 3"},
-                                       {"GazePoint", "1 2 -7"}, {"Up", "0 1 0"},         {"FovY", "60"},
-                                       {"NearDistance", "2"},   {"ImageResolution", "400 200"},
+    j["Scene"]["Cameras"]["Camera"] = {{"_id", "1"},
+                                       {"_type", "lookAt"},
+                                       {"Position", "1 2 3"},
+                                       {"GazePoint", "1 2 -7"},
+                                       {"Up", "0 1 0"},
+                                       {"FovY", "60"},
+                                       {"NearDistance", "2"},
+                                       {"ImageResolution", "400 200"},
                                        {"ImageName", "look.png"}};
     const rt::SceneDesc d = parse(j.dump());
     const rt::CameraDesc& c = d.cameras.at(0);
@@ -530,9 +549,9 @@ TEST(LoaderErrors, WrongType) {
 
 TEST(LoaderErrors, BadNumbers) {
     const std::pair<const char*, const char*> cases[] = {
-        {"1 2 x", "non-numeric"}, {"1 2", "too short"}, {"1 2 3 4", "too long"}, {"nan 0 0", "NaN"},
-        {"inf 0 0", "infinite"},  {"0 -inf 0", "infinite"}, {"1e999 0 0", "overflow"}, {"", "empty"},
-        {"1,2,3", "commas"}};
+        {"1 2 x", "non-numeric"},  {"1 2", "too short"},    {"1 2 3 4", "too long"},
+        {"nan 0 0", "NaN"},        {"inf 0 0", "infinite"}, {"0 -inf 0", "infinite"},
+        {"1e999 0 0", "overflow"}, {"", "empty"},           {"1,2,3", "commas"}};
     for (const auto& [value, why] : cases) {
         SCOPED_TRACE(std::string(why) + ": \"" + value + "\"");
         json j = sample();
@@ -593,9 +612,9 @@ TEST(LoaderErrors, BadCameraVectors) {
     }
     // lookAt: GazePoint equal to Position.
     j = sample();
-    j["Scene"]["Cameras"]["Camera"] = {{"_type", "lookAt"},  {"Position", "1 2 3"},  {"GazePoint", "1 2 3"},
-                                       {"Up", "0 1 0"},      {"FovY", "45"},         {"NearDistance", "1"},
-                                       {"ImageResolution", "8 8"}, {"ImageName", "a.png"}};
+    j["Scene"]["Cameras"]["Camera"] = {
+        {"_type", "lookAt"}, {"Position", "1 2 3"}, {"GazePoint", "1 2 3"},     {"Up", "0 1 0"},
+        {"FovY", "45"},      {"NearDistance", "1"}, {"ImageResolution", "8 8"}, {"ImageName", "a.png"}};
     expect_error(j.dump(), kCam + "/GazePoint");
     // FovY out of range.
     j["Scene"]["Cameras"]["Camera"]["GazePoint"] = "0 0 0";

@@ -8,8 +8,8 @@ namespace {
 
 class Summary : public testing::EmptyTestEventListener {
     void OnTestProgramEnd(const testing::UnitTest& u) override {
-        std::printf("\n%d passed, %d failed, %d skipped\n", u.successful_test_count(),
-                    u.failed_test_count(), u.skipped_test_count());
+        std::printf("\n%d passed, %d failed, %d skipped\n", u.successful_test_count(), u.failed_test_count(),
+                    u.skipped_test_count());
         std::fflush(stdout);
     }
 };

@@ -85,10 +85,10 @@ TEST(MathVec3, Dot) {
 }
 
 TEST(MathVec3, CrossOfBasisIsRightHanded) {
-    expect_vec_eq(rt::cross(Vec3{1, 0, 0}, Vec3{0, 1, 0}), 0, 0, 1);  // x * y = z
-    expect_vec_eq(rt::cross(Vec3{0, 1, 0}, Vec3{0, 0, 1}), 1, 0, 0);  // y * z = x
-    expect_vec_eq(rt::cross(Vec3{0, 0, 1}, Vec3{1, 0, 0}), 0, 1, 0);  // z * x = y
-    expect_vec_eq(rt::cross(Vec3{0, 1, 0}, Vec3{1, 0, 0}), 0, 0, -1); // y * x = -z
+    expect_vec_eq(rt::cross(Vec3{1, 0, 0}, Vec3{0, 1, 0}), 0, 0, 1);   // x * y = z
+    expect_vec_eq(rt::cross(Vec3{0, 1, 0}, Vec3{0, 0, 1}), 1, 0, 0);   // y * z = x
+    expect_vec_eq(rt::cross(Vec3{0, 0, 1}, Vec3{1, 0, 0}), 0, 1, 0);   // z * x = y
+    expect_vec_eq(rt::cross(Vec3{0, 1, 0}, Vec3{1, 0, 0}), 0, 0, -1);  // y * x = -z
 }
 
 TEST(MathVec3, CrossGeneral) {
@@ -115,8 +115,7 @@ TEST(MathVec3, LengthAndNormalize) {
     // (0,0,-5) -> (0,0,-1) exactly: -5 / 5
     expect_vec_eq(rt::normalize(Vec3{0, 0, -5}), 0, 0, -1);
     // (1,1,1)/sqrt(3): each component 0.5773502691896258
-    expect_vec_near(rt::normalize(Vec3{2, 2, 2}), 0.5773502691896258, 0.5773502691896258, 0.5773502691896258,
-                    kTol);
+    expect_vec_near(rt::normalize(Vec3{2, 2, 2}), 0.5773502691896258, 0.5773502691896258, 0.5773502691896258, kTol);
 }
 
 TEST(MathVec3, MinMax) {
@@ -167,7 +166,7 @@ TEST(MathQuantize, ClampsToByteRange) {
     for (Rounding r : {Rounding::Truncate, Rounding::Nearest}) {
         EXPECT_EQ(rt::quantize(Real(255), r), 255);
         EXPECT_EQ(rt::quantize(Real(255.7), r), 255);
-        EXPECT_EQ(rt::quantize(Real(256), r), 255);   // would wrap to 0 in uint8_t without clamping
+        EXPECT_EQ(rt::quantize(Real(256), r), 255);  // would wrap to 0 in uint8_t without clamping
         EXPECT_EQ(rt::quantize(Real(1e6), r), 255);
         EXPECT_EQ(rt::quantize(Real(1e300), r), 255);
         EXPECT_EQ(rt::quantize(Real(HUGE_VAL), r), 255);

@@ -35,9 +35,12 @@ const Enc kAllEncodings[] = {Enc::Ascii, Enc::Little, Enc::Big};
 
 const char* enc_name(Enc e) {
     switch (e) {
-        case Enc::Ascii: return "ascii";
-        case Enc::Little: return "binary_little_endian";
-        case Enc::Big: return "binary_big_endian";
+        case Enc::Ascii:
+            return "ascii";
+        case Enc::Little:
+            return "binary_little_endian";
+        case Enc::Big:
+            return "binary_big_endian";
     }
     return "?";
 }
@@ -103,8 +106,7 @@ struct PlyFile {
     std::vector<Record> records;
 
     std::string header(Enc enc, const std::string& eol = "\n") const {
-        std::string h = "ply" + eol + "format " + enc_name(enc) + " 1.0" + eol +
-                        "comment written by test_ply" + eol;
+        std::string h = "ply" + eol + "format " + enc_name(enc) + " 1.0" + eol + "comment written by test_ply" + eol;
         for (char c : elements) {
             if (c == '\n')
                 h += eol;
@@ -125,15 +127,11 @@ struct PlyFile {
         }
         return b;
     }
-    std::string render(Enc enc, const std::string& eol = "\n") const {
-        return header(enc, eol) + body(enc);
-    }
+    std::string render(Enc enc, const std::string& eol = "\n") const { return header(enc, eol) + body(enc); }
 };
 
 // Records for common shapes.
-Record xyz(const char* type, double x, double y, double z) {
-    return {{type, x}, {type, y}, {type, z}};
-}
+Record xyz(const char* type, double x, double y, double z) { return {{type, x}, {type, y}, {type, z}}; }
 Record face(const char* count_type, const char* index_type, std::vector<int64_t> ids) {
     Record r{{count_type, static_cast<double>(ids.size())}};
     for (int64_t i : ids) r.push_back({index_type, static_cast<double>(i)});
@@ -158,8 +156,7 @@ PlyFile reference_mesh() {
         "element vertex 4\nproperty float x\nproperty float y\nproperty float z\n"
         "element face 2\nproperty list uchar int vertex_indices\n";
     for (size_t i = 0; i < 4; ++i)
-        f.records.push_back(xyz("float", kQuadPositions[3 * i], kQuadPositions[3 * i + 1],
-                                kQuadPositions[3 * i + 2]));
+        f.records.push_back(xyz("float", kQuadPositions[3 * i], kQuadPositions[3 * i + 1], kQuadPositions[3 * i + 2]));
     f.records.push_back(face("uchar", "int", {0, 1, 2}));
     f.records.push_back(face("uchar", "int", {0, 2, 3}));
     return f;
@@ -178,9 +175,7 @@ std::string error_of(const std::string& path) {
     }
 }
 
-bool contains(const std::string& s, const std::string& part) {
-    return s.find(part) != std::string::npos;
-}
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
 // Checks an InputError message: one line, "<path>: <place>..." and mentions `what`.
 // `place` is e.g. "byte " or "line 13:".
@@ -276,8 +271,7 @@ TEST_F(PlyTest, VertexListPropertyAndMixedCoordinateTypes) {
         "element vertex 3\nproperty short x\nproperty list uchar float weights\n"
         "property int32 y\nproperty uint8 z\n"
         "element face 1\nproperty list uchar int vertex_indices\n";
-    f.records.push_back(
-        {{"short", -3}, {"uchar", 2}, {"float", 1}, {"float", 2}, {"int32", 100000}, {"uint8", 7}});
+    f.records.push_back({{"short", -3}, {"uchar", 2}, {"float", 1}, {"float", 2}, {"int32", 100000}, {"uint8", 7}});
     f.records.push_back({{"short", 5}, {"uchar", 0}, {"int32", -1}, {"uint8", 0}});
     f.records.push_back({{"short", 0}, {"uchar", 1}, {"float", 9}, {"int32", 2}, {"uint8", 255}});
     f.records.push_back(face("uchar", "int", {2, 1, 0}));
@@ -303,14 +297,13 @@ TEST_F(PlyTest, ListCountAndIndexTypes) {
                 "element face 2\nproperty list " +
                 std::string(ct) + " " + it + " vertex_indices\n";
             for (size_t i = 0; i < 4; ++i)
-                f.records.push_back(xyz("float", kQuadPositions[3 * i], kQuadPositions[3 * i + 1],
-                                        kQuadPositions[3 * i + 2]));
+                f.records.push_back(
+                    xyz("float", kQuadPositions[3 * i], kQuadPositions[3 * i + 1], kQuadPositions[3 * i + 2]));
             f.records.push_back(face(ct, it, {3, 1, 2}));
             f.records.push_back(face(ct, it, {0, 1, 2, 3}));
             for (Enc enc : kAllEncodings) {
                 SCOPED_TRACE(std::string(enc_name(enc)) + " list " + ct + " " + it);
-                const rt::PlyMesh m =
-                    rt::read_ply(write(enc, std::string(ct) + "_" + it + ".ply", f));
+                const rt::PlyMesh m = rt::read_ply(write(enc, std::string(ct) + "_" + it + ".ply", f));
                 EXPECT_EQ(flat(m.positions), kQuadPositions);
                 EXPECT_EQ(m.indices, (std::vector<uint32_t>{3, 1, 2, 0, 1, 2, 0, 2, 3}));
                 EXPECT_EQ(m.polygons_split, 1u);
@@ -366,18 +359,15 @@ TEST_F(PlyTest, OtherElementsAndFacePropertiesAreSkipped) {
         "property list ushort float texcoord\nproperty double area\n"
         "element extra 3\nproperty list short double stuff\n"
         "element nothing 5\n";  // no properties at all
-    f.records.push_back(
-        {{"float", 0.5}, {"uchar", 1}, {"uchar", 3}, {"uchar", 65}, {"uchar", 66}, {"uchar", 67}});
+    f.records.push_back({{"float", 0.5}, {"uchar", 1}, {"uchar", 3}, {"uchar", 65}, {"uchar", 66}, {"uchar", 67}});
     f.records.push_back({{"float", 1.5}, {"uchar", 2}, {"uchar", 0}});
     for (size_t i = 0; i < 4; ++i)
-        f.records.push_back(xyz("float", kQuadPositions[3 * i], kQuadPositions[3 * i + 1],
-                                kQuadPositions[3 * i + 2]));
+        f.records.push_back(xyz("float", kQuadPositions[3 * i], kQuadPositions[3 * i + 1], kQuadPositions[3 * i + 2]));
     f.records.push_back({{"int", 2}, {"int", 0}, {"int", 1}, {"uchar", 9}});
     f.records.push_back({{"int", 3}, {"int", 1}, {"int", 2}, {"int", 3}, {"uchar", 8}});
     Record f0 = {{"uchar", 1}};
     for (const Val& v : face("uchar", "int", {0, 1, 2})) f0.push_back(v);
-    for (const Val& v : Record{{"ushort", 2}, {"float", 0.1}, {"float", 0.2}, {"double", 4.5}})
-        f0.push_back(v);
+    for (const Val& v : Record{{"ushort", 2}, {"float", 0.1}, {"float", 0.2}, {"double", 4.5}}) f0.push_back(v);
     Record f1 = {{"uchar", 0}};
     for (const Val& v : face("uchar", "int", {0, 2, 3})) f1.push_back(v);
     for (const Val& v : Record{{"ushort", 0}, {"double", -1}}) f1.push_back(v);
@@ -453,11 +443,9 @@ TEST_F(PlyTest, BigEndianDoubleCoordinates) {
     f.elements =
         "element vertex 3\nproperty float64 x\nproperty double y\nproperty double z\n"
         "element face 1\nproperty list uint16 uint32 vertex_indices\n";
-    const std::vector<double> pos = {0.1,       -1e-300, 123456789.123456789, 1e300,
-                                     2.0 / 3.0, -0.0,    3.141592653589793,   5e-324,
-                                     -7.25};
-    for (int i = 0; i < 3; ++i)
-        f.records.push_back(xyz("double", pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]));
+    const std::vector<double> pos = {0.1,    -1e-300, 123456789.123456789, 1e300, 2.0 / 3.0, -0.0, 3.141592653589793,
+                                     5e-324, -7.25};
+    for (int i = 0; i < 3; ++i) f.records.push_back(xyz("double", pos[3 * i], pos[3 * i + 1], pos[3 * i + 2]));
     f.records.push_back(face("uint16", "uint32", {1, 2, 0}));
     const std::string bytes = f.render(Enc::Big);
     // Spot-check the encoding itself: 0.1 big-endian starts with 0x3f 0xb9.
@@ -499,22 +487,18 @@ TEST_F(PlyTest, MissingFileAndDirectory) {
 TEST_F(PlyTest, NotAPlyFile) {
     expect_error(write("empty.ply", ""), "byte 0:", "not a PLY file");
     expect_error(write("text.ply", "hello world\nformat ascii 1.0\n"), "byte 0:", "not a PLY file");
-    expect_error(write("upper.ply", "PLY\nformat ascii 1.0\nend_header\n"),
-                 "byte 0:", "not a PLY file");
-    expect_error(write("binary.ply", std::string("\x89PNG\r\n\x1a\n\0\0", 10)),
-                 "byte 0:", "not a PLY file");
+    expect_error(write("upper.ply", "PLY\nformat ascii 1.0\nend_header\n"), "byte 0:", "not a PLY file");
+    expect_error(write("binary.ply", std::string("\x89PNG\r\n\x1a\n\0\0", 10)), "byte 0:", "not a PLY file");
 }
 
 TEST_F(PlyTest, HeaderErrors) {
     // The byte offset is that of the offending header line.
     expect_error(write("fmt.ply", "ply\nformat binary_middle_endian 1.0\nend_header\n"),
                  "byte 4:", "unknown format 'binary_middle_endian'");
-    expect_error(write("ver.ply", "ply\nformat ascii 2.0\nend_header\n"),
-                 "byte 4:", "unsupported PLY version");
-    expect_error(write("nofmt.ply", "ply\nelement vertex 0\nproperty float x\nend_header\n"),
-                 "byte ", "missing format");
-    expect_error(write("type.ply",
-                       "ply\nformat ascii 1.0\nelement vertex 1\nproperty float33 x\nend_header\n"),
+    expect_error(write("ver.ply", "ply\nformat ascii 2.0\nend_header\n"), "byte 4:", "unsupported PLY version");
+    expect_error(write("nofmt.ply", "ply\nelement vertex 0\nproperty float x\nend_header\n"), "byte ",
+                 "missing format");
+    expect_error(write("type.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float33 x\nend_header\n"),
                  "byte 38:", "unknown type 'float33'");
     expect_error(write("ltype.ply",
                        "ply\nformat ascii 1.0\nelement face 1\nproperty list uchar long "
@@ -554,8 +538,7 @@ TEST_F(PlyTest, MissingCoordinatesOrIndexList) {
                        "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
                        "property float y\nproperty float nz\nend_header\n1 2 3\n"),
                  "byte 21:", "no property 'z'");
-    expect_error(write("novertex.ply", "ply\nformat ascii 1.0\nend_header\n"), "byte ",
-                 "no 'vertex' element");
+    expect_error(write("novertex.ply", "ply\nformat ascii 1.0\nend_header\n"), "byte ", "no 'vertex' element");
     expect_error(write("nolist.ply",
                        "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\n"
                        "property float y\nproperty float z\nelement face 0\n"
@@ -570,8 +553,7 @@ TEST_F(PlyTest, TruncatedBinaryBody) {
         // Triangles only: the size check sees that the declared records cannot fit.
         std::string bytes = ref.render(enc);
         bytes.resize(bytes.size() - 2);
-        expect_error(write(std::string(enc_name(enc)) + "_short.ply", bytes), "byte ",
-                     "more than the file can hold");
+        expect_error(write(std::string(enc_name(enc)) + "_short.ply", bytes), "byte ", "more than the file can hold");
         // A quad as the last face passes the size check (3 indices minimum) and then
         // runs out of bytes inside the record: reported at the start of the missing data.
         PlyFile q = ref;
@@ -595,8 +577,7 @@ TEST_F(PlyTest, TruncatedAsciiBody) {
         "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
         "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
         "0.0 0.0 0.0\n1.0 0.0 0.0\n0.0 1.0 0.0\n3 0 1\n";  // long enough for the size check
-    expect_error(write("ascii_short.ply", text),
-                 "line 14:", "unexpected end of file in element 'face' record 0 of 1");
+    expect_error(write("ascii_short.ply", text), "line 14:", "unexpected end of file in element 'face' record 0 of 1");
     const std::string no_nl = text.substr(0, text.size() - 1);
     expect_error(write("ascii_short2.ply", no_nl), "line 13:", "unexpected end of file");
 }
@@ -640,8 +621,7 @@ TEST_F(PlyTest, NonFiniteCoordinates) {
     for (Enc enc : {Enc::Little, Enc::Big}) {
         // Vertex 2's y: header + 2 records of 12 bytes + 4.
         const size_t off = f.header(enc).size() + 2 * 12 + 4;
-        expect_error(write(enc, "nan.ply", f), "byte " + std::to_string(off) + ":",
-                     "non-finite coordinate");
+        expect_error(write(enc, "nan.ply", f), "byte " + std::to_string(off) + ":", "non-finite coordinate");
     }
     f.records[2] = xyz("float", 1, 0, -inf);
     expect_error(write(Enc::Little, "inf.ply", f), "byte ", "non-finite coordinate");
@@ -664,12 +644,9 @@ TEST_F(PlyTest, BadAsciiNumbers) {
     const std::string head =
         "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
         "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
-    expect_error(write("bad1.ply", head + "0 0 0\n1.0abc 0 0\n3 0 1 1\n"),
-                 "line 11:", "bad number '1.0abc'");
-    expect_error(write("bad2.ply", head + "0 0 0\n1 0 0\n3 0 1 1.0\n"),
-                 "line 12:", "bad integer '1.0'");
-    expect_error(write("bad3.ply", head + "0 0 0\n1 0 0\nthree 0 1 1\n"),
-                 "line 12:", "bad integer 'three'");
+    expect_error(write("bad1.ply", head + "0 0 0\n1.0abc 0 0\n3 0 1 1\n"), "line 11:", "bad number '1.0abc'");
+    expect_error(write("bad2.ply", head + "0 0 0\n1 0 0\n3 0 1 1.0\n"), "line 12:", "bad integer '1.0'");
+    expect_error(write("bad3.ply", head + "0 0 0\n1 0 0\nthree 0 1 1\n"), "line 12:", "bad integer 'three'");
 }
 
 TEST_F(PlyTest, NegativeListCounts) {
@@ -681,8 +658,8 @@ TEST_F(PlyTest, NegativeListCounts) {
     f.records[4] = face("char", "int", {0, 1, 2});
     f.records[5] = {{"char", -1}, {"int", 0}, {"int", 0}, {"int", 0}};
     const size_t count_offset = f.header(Enc::Little).size() + 4 * 12 + 13;
-    expect_error(write(Enc::Little, "neg_count.ply", f),
-                 "byte " + std::to_string(count_offset) + ":", "negative list count -1");
+    expect_error(write(Enc::Little, "neg_count.ply", f), "byte " + std::to_string(count_offset) + ":",
+                 "negative list count -1");
     expect_error(write(Enc::Ascii, "neg_count.ply", f), "line 16:", "negative list count -1");
     // In a skipped element.
     PlyFile g = reference_mesh();
@@ -714,8 +691,7 @@ TEST_F(PlyTest, ImpossibleCountsFailFastWithoutAllocating) {
         "element vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
         "element face " +
         big + "\nproperty list uchar int vertex_indices\n";
-    const std::string verts =
-        "element vertex " + big + "\nproperty float x\nproperty float y\nproperty float z\n";
+    const std::string verts = "element vertex " + big + "\nproperty float x\nproperty float y\nproperty float z\n";
     const std::string skipped =
         "element vertex 1\nproperty float x\nproperty float y\nproperty float z\n"
         "element junk 18446744073709551615\nproperty list uchar uchar stuff\n";
@@ -735,8 +711,7 @@ TEST_F(PlyTest, ImpossibleCountsFailFastWithoutAllocating) {
             EXPECT_TRUE(contains(error_of(path), expected_element[c])) << error_of(path);
             const auto t0 = std::chrono::steady_clock::now();
             expect_error(path, "byte ", "more than the file can hold");
-            const double secs =
-                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
             EXPECT_LT(secs, 1.0);
         }
     }
@@ -756,12 +731,10 @@ TEST_F(PlyTest, LargeBinaryFile) {
     for (Enc enc : {Enc::Little, Enc::Big}) {
         SCOPED_TRACE(enc_name(enc));
         const bool big = enc == Enc::Big;
-        std::string bytes = std::string("ply\nformat ") + enc_name(enc) + " 1.0\nelement vertex " +
-                            std::to_string(nv) +
+        std::string bytes = std::string("ply\nformat ") + enc_name(enc) + " 1.0\nelement vertex " + std::to_string(nv) +
                             "\nproperty float x\nproperty float y\nproperty float z\n"
                             "element face " +
-                            std::to_string(ntri + 1) +
-                            "\nproperty list uchar uint vertex_indices\nend_header\n";
+                            std::to_string(ntri + 1) + "\nproperty list uchar uint vertex_indices\nend_header\n";
         std::vector<double> pos;
         std::vector<uint32_t> idx;
         for (int j = 0; j < n; ++j) {
@@ -776,8 +749,7 @@ TEST_F(PlyTest, LargeBinaryFile) {
         }
         for (int j = 0; j + 1 < n; ++j) {
             for (int i = 0; i + 1 < n; ++i) {
-                const uint32_t a = static_cast<uint32_t>(j * n + i), b = a + 1, c = a + n,
-                               d = c + 1;
+                const uint32_t a = static_cast<uint32_t>(j * n + i), b = a + 1, c = a + n, d = c + 1;
                 for (const uint32_t t : {a, b, d, a, d, c}) idx.push_back(t);
                 put(bytes, uint8_t(3), big);
                 for (const uint32_t t : {a, b, d}) put(bytes, t, big);
@@ -796,9 +768,8 @@ TEST_F(PlyTest, LargeBinaryFile) {
         EXPECT_EQ(m.polygons_split, 1u);
 
         // The same file cut inside the final quad.
-        expect_error(
-            write(std::string(enc_name(enc)) + "_large_cut.ply", bytes.substr(0, bytes.size() - 3)),
-            "byte " + std::to_string(bytes.size() - 16) + ":", "unexpected end of file");
+        expect_error(write(std::string(enc_name(enc)) + "_large_cut.ply", bytes.substr(0, bytes.size() - 3)),
+                     "byte " + std::to_string(bytes.size() - 16) + ":", "unexpected end of file");
         // An out-of-range index in the last triangle of the fast path.
         std::string bad = bytes;
         const size_t last_tri_index = bytes.size() - 17 - 4;

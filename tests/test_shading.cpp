@@ -188,8 +188,10 @@ using Pixel = std::array<int, 3>;
 // at distance 1; `res` is "W H".
 std::string camera(const std::string& res = "1 1", const std::string& near = "1") {
     return R"("Cameras": {"Camera": {"_id": "1", "Position": "0 0 0", "Gaze": "0 0 -1", "Up": "0 1 0",
-        "NearPlane": "-)" + near + " " + near + " -" + near + " " + near + R"(", "NearDistance": "1",
-        "ImageResolution": ")" + res + R"(", "ImageName": "t.png"}})";
+        "NearPlane": "-)" +
+           near + " " + near + " -" + near + " " + near + R"(", "NearDistance": "1",
+        "ImageResolution": ")" +
+           res + R"(", "ImageName": "t.png"}})";
 }
 
 rt::Image render_json(const std::string& scene_body, const rt::RenderOptions& opt = {}) {
@@ -251,8 +253,10 @@ std::string oblique_light_scene(const std::string& extra_objects, const std::str
         "Lights": {"AmbientLight": "42 42 42", "PointLight": {"_id": "1", "Position": "5 0 -5", "Intensity": "1000 1000 1000"}},
         "Materials": {"Material": {"_id": "1", "AmbientReflectance": "0.125 0.25 0.375",
             "DiffuseReflectance": "0.25 0.625 0.75", "SpecularReflectance": "0 0 0"}},
-        "VertexData": {"_data": "0 0 -10 )" + extra_vertices + R"("},
-        "Objects": {"Plane": {"_id": "1", "Material": "1", "Point": "1", "Normal": "0 0 1"})" + extra_objects + "}";
+        "VertexData": {"_data": "0 0 -10 )" +
+           extra_vertices + R"("},
+        "Objects": {"Plane": {"_id": "1", "Material": "1", "Point": "1", "Normal": "0 0 1"})" +
+           extra_objects + "}";
 }
 
 TEST(ShadingRender, ObliqueLightUnshadowed) {
@@ -346,11 +350,13 @@ std::string mirror_scene(const std::string& extra_scene, bool with_plane, const 
     return camera("3 3") + extra_scene + R"(,
         "Lights": {"AmbientLight": "100 100 100"},
         "Materials": {"Material": [
-            {"_id": "1", "_type": "mirror", "AmbientReflectance": ")" + sphere_ambient + R"(",
+            {"_id": "1", "_type": "mirror", "AmbientReflectance": ")" +
+           sphere_ambient + R"(",
              "DiffuseReflectance": "0 0 0", "SpecularReflectance": "0 0 0", "MirrorReflectance": "0.75 0.75 0.75"},
             {"_id": "2", "AmbientReflectance": "1 0.5 0.25", "DiffuseReflectance": "0 0 0", "SpecularReflectance": "0 0 0"}]},
         "VertexData": {"_data": "0 0 -10 0 0 5"},
-        "Objects": {)" + objects + "}";
+        "Objects": {)" +
+           objects + "}";
 }
 
 TEST(ShadingRender, MirrorSphereReflectsColouredPlane) {
@@ -458,12 +464,13 @@ TEST(ShadingRender, InvisibleGlass) {
                  "SpecularReflectance": "0 0 0", "MirrorReflectance": "1 1 1", "RefractionIndex": "1",
                  "AbsorptionCoefficient": "0 0 0"}]},
             "VertexData": {"_data": "0 0 -10 0 0 -5"},
-            "Objects": {)" + objects + "}";
+            "Objects": {)" + objects +
+                                 "}";
         const rt::Image img = render_json(body);
         for (int j = 0; j < 3; ++j)
             for (int i = 0; i < 3; ++i)
-                EXPECT_EQ(px(img, i, j), (Pixel{99, 50, 25})) << (glass ? "with" : "without") << " glass, pixel " << i
-                                                               << "," << j;
+                EXPECT_EQ(px(img, i, j), (Pixel{99, 50, 25}))
+                    << (glass ? "with" : "without") << " glass, pixel " << i << "," << j;
     }
 }
 
@@ -476,9 +483,11 @@ std::string slab_scene(const std::string& index, const std::string& glass_ambien
         "Lights": {"AmbientLight": "200 200 200"},
         "Materials": {"Material": [
             {"_id": "1", "AmbientReflectance": "1 1 1", "DiffuseReflectance": "0 0 0", "SpecularReflectance": "0 0 0"},
-            {"_id": "2", "_type": "dielectric", "AmbientReflectance": ")" + glass_ambient + R"(",
+            {"_id": "2", "_type": "dielectric", "AmbientReflectance": ")" +
+           glass_ambient + R"(",
              "DiffuseReflectance": "0 0 0", "SpecularReflectance": "0 0 0", "MirrorReflectance": "1 1 1",
-             "RefractionIndex": ")" + index + R"(", "AbsorptionCoefficient": ")" + absorption + R"("}]},
+             "RefractionIndex": ")" +
+           index + R"(", "AbsorptionCoefficient": ")" + absorption + R"("}]},
         "VertexData": {"_data": "0 0 -10  -2 -3 -4 3 -3 -4 3 2 -4 -2 2 -4  -2 -3 -6 -2 2 -6 3 2 -6 3 -3 -6"},
         "Objects": {"Plane": {"_id": "1", "Material": "1", "Point": "1", "Normal": "0 0 1"},
             "Mesh": [{"_id": "1", "Material": "2", "Faces": {"_data": "2 3 4 2 4 5"}},
@@ -532,7 +541,8 @@ std::string mirror_in_glass_scene(const std::string& absorption) {
             {"_id": "1", "AmbientReflectance": "0.995 0.505 0.255", "DiffuseReflectance": "0 0 0", "SpecularReflectance": "0 0 0"},
             {"_id": "2", "_type": "dielectric", "AmbientReflectance": "0 0 0", "DiffuseReflectance": "0 0 0",
              "SpecularReflectance": "0 0 0", "MirrorReflectance": "1 1 1", "RefractionIndex": "1.5",
-             "AbsorptionCoefficient": ")" + absorption + R"("},
+             "AbsorptionCoefficient": ")" +
+           absorption + R"("},
             {"_id": "3", "_type": "mirror", "AmbientReflectance": "0 0 0", "DiffuseReflectance": "0 0 0",
              "SpecularReflectance": "0 0 0", "MirrorReflectance": "1 1 1"}]},
         "VertexData": {"_data": "0 0 5  -2 -3 -4 3 -3 -4 3 2 -4 -2 2 -4  -2 -3 -6 3 -3 -6 3 2 -6 -2 2 -6"},

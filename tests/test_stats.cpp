@@ -105,10 +105,10 @@ TEST(Stats, JsonHasTheDocumentedFieldsWithPlausibleValues) {
     EXPECT_GT(im.at("seconds").at("ply").get<double>(), 0);  // one PLY file was read
     EXPECT_GT(im.at("seconds").at("render").get<double>(), 0);
     const Rays r = rays_of(im);
-    EXPECT_EQ(r.camera, 96u * 54u);  // one camera ray per pixel
-    EXPECT_GT(r.shadow, 0u);         // two lights over a lit floor
-    EXPECT_GT(r.reflection, 0u);     // mirror, conductor, glass
-    EXPECT_GT(r.refraction, 0u);     // glass
+    EXPECT_EQ(r.camera, 96u * 54u);                                     // one camera ray per pixel
+    EXPECT_GT(r.shadow, 0u);                                            // two lights over a lit floor
+    EXPECT_GT(r.reflection, 0u);                                        // mirror, conductor, glass
+    EXPECT_GT(r.refraction, 0u);                                        // glass
     EXPECT_LE(r.shadow, 2 * (r.camera + r.reflection + r.refraction));  // at most one per light per hit
     EXPECT_EQ(im.at("rays").at("total").get<uint64_t>(), r.camera + r.shadow + r.reflection + r.refraction);
     EXPECT_GT(im.at("rays_per_second").get<double>(), 0);
@@ -245,9 +245,12 @@ std::string run_on_terminal(const std::vector<std::string>& args, int* exit_code
     char buf[4096];
     for (;;) {
         const ssize_t n = ::read(master, buf, sizeof buf);
-        if (n > 0) out.append(buf, size_t(n));
-        else if (n < 0 && errno == EINTR) continue;
-        else break;  // EIO once the child has closed the terminal
+        if (n > 0)
+            out.append(buf, size_t(n));
+        else if (n < 0 && errno == EINTR)
+            continue;
+        else
+            break;  // EIO once the child has closed the terminal
     }
     ::close(master);
     int status = 0;
@@ -315,9 +318,13 @@ TEST(Stats, MeasurementSwitches) {
     EXPECT_EQ(leaf["images"][0]["bvh"]["bins"], 8);
     EXPECT_EQ(leaf["images"][0]["bvh"]["split"], "median");
 
-    for (const std::vector<std::string>& bad : std::vector<std::vector<std::string>>{
-             {"--max-depth", "-1"}, {"--epsilon-scale", "0"}, {"--epsilon-scale", "x"}, {"--bvh-leaf", "0"},
-             {"--bvh-bins", "17"}, {"--bvh-split", "fast"}, {"--stats"}}) {
+    for (const std::vector<std::string>& bad : std::vector<std::vector<std::string>>{{"--max-depth", "-1"},
+                                                                                     {"--epsilon-scale", "0"},
+                                                                                     {"--epsilon-scale", "x"},
+                                                                                     {"--bvh-leaf", "0"},
+                                                                                     {"--bvh-bins", "17"},
+                                                                                     {"--bvh-split", "fast"},
+                                                                                     {"--stats"}}) {
         std::vector<std::string> args = bad;
         if (bad.size() > 1) args.push_back(scene);
         const RunResult r = run_raytracer(args);
@@ -402,7 +409,8 @@ TEST(Stats, DefaultBvhOptionsBuildTheSameTree) {
     EXPECT_TRUE(o.sah);
     const rt::Scene b = rt::build_scene(d, o);
     ASSERT_EQ(a.accel.bvh.nodes.size(), b.accel.bvh.nodes.size());
-    EXPECT_EQ(0, std::memcmp(a.accel.bvh.nodes.begin(), b.accel.bvh.nodes.begin(), a.accel.bvh.nodes.size() * sizeof(rt::Bvh4Node)));
+    EXPECT_EQ(0, std::memcmp(a.accel.bvh.nodes.begin(), b.accel.bvh.nodes.begin(),
+                             a.accel.bvh.nodes.size() * sizeof(rt::Bvh4Node)));
     EXPECT_EQ(a.accel.bvh.prims, b.accel.bvh.prims);
     o.max_leaf = 1;
     const rt::Scene c = rt::build_scene(d, o);

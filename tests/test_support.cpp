@@ -77,8 +77,7 @@ std::string repo_file(const std::string& relative) {
     return relative;
 }
 
-RunResult run_raytracer(const std::vector<std::string>& args, const std::string& cwd,
-                        unsigned timeout_seconds) {
+RunResult run_raytracer(const std::vector<std::string>& args, const std::string& cwd, unsigned timeout_seconds) {
     return run_program(raytracer_path(), args, cwd, timeout_seconds);
 }
 
@@ -142,8 +141,10 @@ RunResult run_program(const std::string& exe, const std::vector<std::string>& ar
             return result;
         }
     }
-    if (WIFEXITED(status)) result.exit_code = WEXITSTATUS(status);
-    else if (WIFSIGNALED(status)) result.exit_code = 128 + WTERMSIG(status);
+    if (WIFEXITED(status))
+        result.exit_code = WEXITSTATUS(status);
+    else if (WIFSIGNALED(status))
+        result.exit_code = 128 + WTERMSIG(status);
 
     try {
         result.out = read_text(out_path);
@@ -195,8 +196,7 @@ ImageDiff compare(const rt::Image& a, const rt::Image& b) {
     d.mean_diff = sum / double(n);
     d.pct_over_1 = 100.0 * double(pixels_over) / double(n / 3);
     const double mse = sum_sq / double(n);
-    d.psnr = mse == 0 ? std::numeric_limits<double>::infinity()
-                      : 10.0 * std::log10(255.0 * 255.0 / mse);
+    d.psnr = mse == 0 ? std::numeric_limits<double>::infinity() : 10.0 * std::log10(255.0 * 255.0 / mse);
     return d;
 }
 

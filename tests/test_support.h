@@ -59,10 +59,10 @@ std::string rtconvert_path();
 bool load_png(const std::string& path, rt::Image& out);
 
 struct ImageDiff {
-    int max_diff = 0;         // largest absolute difference of any channel, in levels
-    double mean_diff = 0;     // mean absolute difference over all channel values
-    double pct_over_1 = 0;    // percentage of pixels with some channel off by more than 1
-    double psnr = 0;          // over all channels, dB; +inf when identical
+    int max_diff = 0;       // largest absolute difference of any channel, in levels
+    double mean_diff = 0;   // mean absolute difference over all channel values
+    double pct_over_1 = 0;  // percentage of pixels with some channel off by more than 1
+    double psnr = 0;        // over all channels, dB; +inf when identical
 };
 
 // Per-channel comparison of two images of the same size. Images of different sizes

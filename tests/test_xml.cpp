@@ -52,7 +52,8 @@ std::string xml_scene(const std::string& objects, const std::string& image = "x.
             <NearPlane>-1 1 -1 1</NearPlane>
             <NearDistance>1</NearDistance>
             <ImageResolution>16 12</ImageResolution>
-            <ImageName>)" + image + R"(</ImageName>
+            <ImageName>)" +
+           image + R"(</ImageName>
         </Camera>
     </Cameras>
     <Lights>
@@ -71,7 +72,8 @@ std::string xml_scene(const std::string& objects, const std::string& image = "x.
          1 -1 -2
          0  1 -2
     </VertexData>
-    <Objects>)" + objects + R"(</Objects>
+    <Objects>)" +
+           objects + R"(</Objects>
 </Scene>
 )";
 }
@@ -201,12 +203,13 @@ TEST(XmlLoader, AttributesOfTheFormat) {
     EXPECT_EQ(d.meshes[1].shading, rt::ShadingMode::Flat);
     ASSERT_EQ(d.materials.size(), 2u);
     EXPECT_EQ(d.materials[1].type, rt::MaterialType::Mirror);
-    EXPECT_NEAR(double(d.cameras.at(0).top), 1.0, 1e-6);           // tan(45 degrees)
-    EXPECT_NEAR(double(d.cameras.at(0).right), 16.0 / 12.0, 1e-6);   // aspect from the resolution
+    EXPECT_NEAR(double(d.cameras.at(0).top), 1.0, 1e-6);            // tan(45 degrees)
+    EXPECT_NEAR(double(d.cameras.at(0).right), 16.0 / 12.0, 1e-6);  // aspect from the resolution
 }
 
 TEST(XmlLoader, ErrorsNameTheTreePlace) {
-    const std::string bad = xml_scene(R"(<Sphere id="1"><Material>1</Material><Center>1</Center><Radius>-1</Radius></Sphere>)");
+    const std::string bad =
+        xml_scene(R"(<Sphere id="1"><Material>1</Material><Center>1</Center><Radius>-1</Radius></Sphere>)");
     EXPECT_EQ(error_of_xml(bad), "t.xml: /Scene/Objects/Sphere/Radius: must be greater than 0");
     const std::string bad_face = xml_scene(R"(<Mesh id="1"><Material>1</Material><Faces>1 2 9</Faces></Mesh>)");
     EXPECT_EQ(error_of_xml(bad_face).rfind("t.xml: /Scene/Objects/Mesh/Faces: vertex id 9 out of range", 0), 0u)
@@ -390,8 +393,9 @@ TEST(XmlOfficial, BunnyAndTwoSpheresMatchTheReferences) {
         rt::Image ref;
         ASSERT_TRUE(load_png(shared_dir() + "/references/hw1/" + name + ".png", ref));
         const ImageDiff d = compare(ours, ref);
-        std::printf("[ xml      ] %s.xml vs references/hw1/%s.png: %.4f%% of pixels off by more than 1, max %d, PSNR %.1f dB\n",
-                    name, name, d.pct_over_1, d.max_diff, d.psnr);
+        std::printf(
+            "[ xml      ] %s.xml vs references/hw1/%s.png: %.4f%% of pixels off by more than 1, max %d, PSNR %.1f dB\n",
+            name, name, d.pct_over_1, d.max_diff, d.psnr);
         EXPECT_LE(d.pct_over_1, 0.2);
     }
 }

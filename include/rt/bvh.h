@@ -65,9 +65,7 @@ struct BuildBox {
     float hi[3];
     uint32_t unused;
 
-    static BuildBox of(const Box& b) {
-        return {{b.lo[0], b.lo[1], b.lo[2]}, 0, {b.hi[0], b.hi[1], b.hi[2]}, 0};
-    }
+    static BuildBox of(const Box& b) { return {{b.lo[0], b.lo[1], b.lo[2]}, 0, {b.hi[0], b.hi[1], b.hi[2]}, 0}; }
 };
 
 struct alignas(64) Bvh4Node {
@@ -97,7 +95,10 @@ public:
     Bvh4Node& operator[](size_t i) { return data_[i]; }
     const Bvh4Node* begin() const { return data_.get(); }
     const Bvh4Node* end() const { return data_.get() + size_; }
-    void clear() { data_.reset(); size_ = 0; }
+    void clear() {
+        data_.reset();
+        size_ = 0;
+    }
     // Storage for `capacity` nodes, uninitialised; then set_size(n) with n <= capacity.
     // Arrays of 8 MiB or more ask for transparent huge pages (bvh_build.cpp).
     void allocate(size_t capacity);
@@ -122,11 +123,11 @@ inline constexpr uint32_t kLeafBlock = 1;
 // Build quality knobs (the raytracer's hidden --bvh-* options, for measurements);
 // the defaults are what every render uses.
 struct BvhBuildOptions {
-    uint32_t max_leaf = 8;      // a leaf never holds more primitives, whatever SAH says (1..1024)
-    float traversal_cost = 1;   // SAH cost of one traversal step, relative to one leaf block test
+    uint32_t max_leaf = 8;        // a leaf never holds more primitives, whatever SAH says (1..1024)
+    float traversal_cost = 1;     // SAH cost of one traversal step, relative to one leaf block test
     uint32_t block = kLeafBlock;  // SAH counts a leaf's cost in blocks of this many primitives (1..16)
-    int bins = 16;              // SAH bins per axis for large ranges (2..16; small ranges use fewer)
-    bool sah = true;            // false: object-median splits only (fastest build, slower rays)
+    int bins = 16;                // SAH bins per axis for large ranges (2..16; small ranges use fewer)
+    bool sah = true;              // false: object-median splits only (fastest build, slower rays)
 };
 
 struct Bvh {

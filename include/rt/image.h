@@ -21,7 +21,8 @@ struct Image {
 uint8_t quantize(Real value, Rounding rounding);
 
 // Writes a PNG atomically (write_file_atomic, rt/atomic_file.h): to a temporary name
-// beside `path`, then renamed over it, so a failure never leaves a half-written image. Throws rt::InputError naming `path`.
+// beside `path`, then renamed over it, so a failure never leaves a half-written image. Throws rt::InputError naming
+// `path`.
 void write_png(const Image& image, const std::string& path);
 
 // Binary PPM (P6, maxval 255), written atomically like write_png.

@@ -109,8 +109,8 @@ inline bool triangle_hit(const RayPre& p, const TriEdges& e, Real tmin, Real tma
         const Real dx = gamma_bound(5) * (max_xt + max_zt), dy = gamma_bound(5) * (max_yt + max_zt);
         const Real de = 2 * (gamma_bound(2) * max_xt * max_yt + dy * max_xt + dx * max_yt);
         const Real max_o = std::fmax(std::fabs(p.ray.org.x), std::fmax(std::fabs(p.ray.org.y), std::fabs(p.ray.org.z)));
-        const Real dt = 3 * (gamma_bound(3) * max_e * max_zt + de * max_zt + dz * max_e) * std::fabs(inv) +
-                        gamma_bound(8) * max_o;
+        const Real dt =
+            3 * (gamma_bound(3) * max_e * max_zt + de * max_zt + dz * max_e) * std::fabs(inv) + gamma_bound(8) * max_o;
         if (tt <= dt) return false;
     }
     t = tt;
@@ -124,8 +124,7 @@ inline bool triangle_hit(const RayPre& p, const TriEdges& e, Real tmin, Real tma
 // distance t and the barycentric weights (w0, w1, w2) of a, b, c. kCull: see
 // inside_edges; kShadow: see triangle_hit.
 template <bool kCull = false, bool kShadow = false>
-inline bool intersect_triangle(const RayPre& p, Vec3 a, Vec3 b, Vec3 c, Real tmin, Real tmax,
-                               Real& t, Real w[3]) {
+inline bool intersect_triangle(const RayPre& p, Vec3 a, Vec3 b, Vec3 c, Real tmin, Real tmax, Real& t, Real w[3]) {
     const TriEdges e = triangle_edges(p, a, b, c);
     return inside_edges<kCull>(e.u, e.v, e.w) && triangle_hit<kShadow>(p, e, tmin, tmax, t, w);
 }
@@ -144,8 +143,14 @@ inline bool intersect_sphere(const Ray& r, Vec3 centre, Real radius, Real tmin, 
     const Real q = -b - std::copysign(std::sqrt(disc), b);
     Real t0 = q, t1 = (q != 0) ? c / q : q;
     if (t0 > t1) std::swap(t0, t1);
-    if (t0 > tmin && t0 < tmax) { t = t0; return true; }
-    if (t1 > tmin && t1 < tmax) { t = t1; return true; }
+    if (t0 > tmin && t0 < tmax) {
+        t = t0;
+        return true;
+    }
+    if (t1 > tmin && t1 < tmax) {
+        t = t1;
+        return true;
+    }
     return false;
 }
 

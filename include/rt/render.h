@@ -9,8 +9,8 @@
 namespace rt {
 
 struct RenderOptions {
-    int threads = 0;        // 0: all hardware threads
-    bool cull = true;       // back-face culling of camera and reflection rays (spec 2.9)
+    int threads = 0;   // 0: all hardware threads
+    bool cull = true;  // back-face culling of camera and reflection rays (spec 2.9)
     Rounding rounding = Rounding::Truncate;
     // When set, called on the calling thread about every `progress_interval` seconds
     // while the image renders, with the tiles finished so far and the tile count (never

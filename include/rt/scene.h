@@ -56,9 +56,9 @@ inline constexpr ShapeKind kShapeKinds[] = {ShapeKind::Triangle, ShapeKind::Sphe
 static_assert(std::size(kShapeKinds) == size_t(ShapeKind::Plane) + 1, "kShapeKinds lists every kind, in order");
 
 struct Triangle {
-    uint32_t v[3];            // into Geometry::positions (and vertex_normals when smooth)
+    uint32_t v[3];  // into Geometry::positions (and vertex_normals when smooth)
     uint32_t material : 31;
-    uint32_t smooth : 1;      // 1: interpolate vertex normals; 0: flat
+    uint32_t smooth : 1;  // 1: interpolate vertex normals; 0: flat
 };
 static_assert(sizeof(Triangle) == 16, "Triangle must stay 16 bytes");
 
@@ -78,9 +78,12 @@ struct Plane {
 // all a triangle is. build_scene makes them only when every kind present says yes.
 constexpr bool holds_leaf_vertices(ShapeKind kind) {
     switch (kind) {
-        case ShapeKind::Triangle: return true;
-        case ShapeKind::Sphere: return false;
-        case ShapeKind::Plane: return true;  // not in the BVH
+        case ShapeKind::Triangle:
+            return true;
+        case ShapeKind::Sphere:
+            return false;
+        case ShapeKind::Plane:
+            return true;  // not in the BVH
     }
     return false;
 }
@@ -116,9 +119,12 @@ struct Geometry {
     // Primitives of one kind.
     uint32_t count(ShapeKind kind) const {
         switch (kind) {
-            case ShapeKind::Triangle: return static_cast<uint32_t>(triangles.size());
-            case ShapeKind::Sphere: return static_cast<uint32_t>(spheres.size());
-            case ShapeKind::Plane: return static_cast<uint32_t>(planes.size());
+            case ShapeKind::Triangle:
+                return static_cast<uint32_t>(triangles.size());
+            case ShapeKind::Sphere:
+                return static_cast<uint32_t>(spheres.size());
+            case ShapeKind::Plane:
+                return static_cast<uint32_t>(planes.size());
         }
         return 0;
     }
@@ -165,7 +171,8 @@ struct Geometry {
                 const Vec3 r{sp.radius, sp.radius, sp.radius};
                 return Box::around(sp.center - r, sp.center + r);
             }
-            case ShapeKind::Plane: return {{-HUGE_VALF, -HUGE_VALF, -HUGE_VALF}, {HUGE_VALF, HUGE_VALF, HUGE_VALF}};
+            case ShapeKind::Plane:
+                return {{-HUGE_VALF, -HUGE_VALF, -HUGE_VALF}, {HUGE_VALF, HUGE_VALF, HUGE_VALF}};
         }
         return {};
     }

@@ -24,7 +24,7 @@ struct MaterialDesc {
 };
 
 struct CameraDesc {
-    Vec3 position, gaze, up;   // gaze is a direction (lookAt cameras: GazePoint - Position)
+    Vec3 position, gaze, up;                          // gaze is a direction (lookAt cameras: GazePoint - Position)
     Real left = -1, right = 1, bottom = -1, top = 1;  // near plane extents
     Real near_distance = 1;
     int width = 0, height = 0;

@@ -25,9 +25,7 @@ inline Vec3 beer_attenuation(Vec3 c, Real distance) {
 
 // The one place secondary rays are born: the origin is pushed `epsilon` along
 // `offset_normal` (which the caller points to the side the ray leaves from).
-inline Ray spawn_ray(Vec3 p, Vec3 offset_normal, Real epsilon, Vec3 dir) {
-    return {p + offset_normal * epsilon, dir};
-}
+inline Ray spawn_ray(Vec3 p, Vec3 offset_normal, Real epsilon, Vec3 dir) { return {p + offset_normal * epsilon, dir}; }
 
 struct TraceOptions {
     bool cull = true;

@@ -8,13 +8,13 @@
 // BvhBuildOptions::block primitives, as many as one leaf test takes). Large
 // subtrees are built on their own threads; nodes come from one array through an
 // atomic counter.
+#include <sys/mman.h>
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <thread>
 #include <cstdlib>
 #include <new>
-#include <sys/mman.h>
+#include <thread>
 
 #if defined(__AVX__)
 #include <immintrin.h>
@@ -70,7 +70,7 @@ constexpr int kBins = 16;
 inline int bins_for(uint32_t count, int max_bins) {
     return std::min(max_bins, count >= 32 ? kBins : std::max(4, static_cast<int>(count / 2)));
 }
-constexpr int kSahDepthLimit = 48;   // beyond it, object-median splits bound the depth
+constexpr int kSahDepthLimit = 48;             // beyond it, object-median splits bound the depth
 constexpr uint32_t kParallelMin = 1u << 15;    // smallest subtree worth a thread
 constexpr uint32_t kParallelSplit = 1u << 20;  // smallest range whose split is shared by two threads
 
@@ -102,8 +102,8 @@ inline Box8 centroid8(Box8 v) {
 // products and their order of summation are Box::area's.
 inline float area8(Box8 v) {
     const __m128 e = _mm_add_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));  // -(extent)
-    if (_mm_cvtss_f32(e) > 0) return 0;                                                    // empty
-    const __m128 p = _mm_mul_ps(e, _mm_shuffle_ps(e, e, _MM_SHUFFLE(3, 0, 2, 1)));         // xy, yz, zx
+    if (_mm_cvtss_f32(e) > 0) return 0;                                                   // empty
+    const __m128 p = _mm_mul_ps(e, _mm_shuffle_ps(e, e, _MM_SHUFFLE(3, 0, 2, 1)));        // xy, yz, zx
     const __m128 s = _mm_add_ss(_mm_add_ss(p, _mm_shuffle_ps(p, p, 1)), _mm_shuffle_ps(p, p, 2));
     return 2 * _mm_cvtss_f32(s);
 }
@@ -121,9 +121,7 @@ inline Box8 min8(Box8 a, const Box8& b) {
     for (int i = 0; i < 8; ++i) a.f[i] = std::min(a.f[i], b.f[i]);
     return a;
 }
-inline Box8 load8(const BuildBox& b) {
-    return {{b.lo[0], b.lo[1], b.lo[2], 0, -b.hi[0], -b.hi[1], -b.hi[2], 0}};
-}
+inline Box8 load8(const BuildBox& b) { return {{b.lo[0], b.lo[1], b.lo[2], 0, -b.hi[0], -b.hi[1], -b.hi[2], 0}}; }
 inline Box8 centroid8(const Box8& v) {
     const float c[3] = {v.f[0] - v.f[4], v.f[1] - v.f[5], v.f[2] - v.f[6]};
     return {{c[0], c[1], c[2], 0, -c[0], -c[1], -c[2], 0}};

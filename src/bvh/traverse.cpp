@@ -159,16 +159,16 @@ inline int edges4(const RayPre& p, const Vertices4& vx, int n, Edges4& e) {
     const __m256d v = _mm256_sub_pd(_mm256_mul_pd(x[0], y[2]), _mm256_mul_pd(y[0], x[2]));
     const __m256d w = _mm256_sub_pd(_mm256_mul_pd(x[1], y[0]), _mm256_mul_pd(y[1], x[0]));
     const __m256d zero = _mm256_setzero_pd();
-    const int neg = _mm256_movemask_pd(_mm256_or_pd(
-        _mm256_or_pd(_mm256_cmp_pd(u, zero, _CMP_LT_OQ), _mm256_cmp_pd(v, zero, _CMP_LT_OQ)),
-        _mm256_cmp_pd(w, zero, _CMP_LT_OQ)));
+    const int neg = _mm256_movemask_pd(
+        _mm256_or_pd(_mm256_or_pd(_mm256_cmp_pd(u, zero, _CMP_LT_OQ), _mm256_cmp_pd(v, zero, _CMP_LT_OQ)),
+                     _mm256_cmp_pd(w, zero, _CMP_LT_OQ)));
     int out;
     if (kCull) {
         out = ~neg;
     } else {
-        const int pos = _mm256_movemask_pd(_mm256_or_pd(
-            _mm256_or_pd(_mm256_cmp_pd(u, zero, _CMP_GT_OQ), _mm256_cmp_pd(v, zero, _CMP_GT_OQ)),
-            _mm256_cmp_pd(w, zero, _CMP_GT_OQ)));
+        const int pos = _mm256_movemask_pd(
+            _mm256_or_pd(_mm256_or_pd(_mm256_cmp_pd(u, zero, _CMP_GT_OQ), _mm256_cmp_pd(v, zero, _CMP_GT_OQ)),
+                         _mm256_cmp_pd(w, zero, _CMP_GT_OQ)));
         out = ~(neg & pos);
     }
     out &= (1 << n) - 1;
@@ -260,7 +260,7 @@ bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
     bool found = false;
     Real best_t = tmax;
     uint32_t best_id = ~0u;  // primitive id (Geometry::shape_of)
-    Real w[3] = {0, 0, 0};  // spheres leave them untouched
+    Real w[3] = {0, 0, 0};   // spheres leave them untouched
     // Primitive tests accept t <= best_t, so ties reach consider() and are settled by
     // id: their range ends at nextafter(best_t), kept here as best_t changes (a libm
     // call per primitive test cost 3% of render time).
@@ -292,11 +292,12 @@ bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
         for (;;) {
             if (e.child < 0) {
                 const uint32_t first = ~static_cast<uint32_t>(e.child);
-                test_leaf<kCull, false>(s, p, first, first + e.count, tmin, [&] { return prim_limit; }, w,
-                                        [&](uint32_t id, Real t) {
-                                            consider(id, t);
-                                            return false;
-                                        });
+                test_leaf<kCull, false>(
+                    s, p, first, first + e.count, tmin, [&] { return prim_limit; }, w,
+                    [&](uint32_t id, Real t) {
+                        consider(id, t);
+                        return false;
+                    });
             } else {
                 const Bvh4Node& n = s.accel.bvh.nodes[e.child];
                 double t[4];
@@ -373,11 +374,12 @@ bool any_hit(const Scene& s, const Ray& ray, Real tmin, Real tmax, uint32_t* occ
     for (;;) {
         if (child < 0) {
             const uint32_t first = ~static_cast<uint32_t>(child);
-            if (test_leaf<false, true>(s, p, first, first + count, tmin, [&] { return tmax; }, w,
-                                       [&](uint32_t id, Real) {
-                                           if (occluder) *occluder = id;
-                                           return true;
-                                       }))
+            if (test_leaf<false, true>(
+                    s, p, first, first + count, tmin, [&] { return tmax; }, w,
+                    [&](uint32_t id, Real) {
+                        if (occluder) *occluder = id;
+                        return true;
+                    }))
                 return true;
         } else {
             const Bvh4Node& n = s.accel.bvh.nodes[child];

@@ -44,16 +44,21 @@ public:
         text += "\n";
     }
     void object(const std::string& name, uint32_t material, bool smooth) {
-        text += "o " + name + "\nusemtl material_" + std::to_string(material + 1) + "\ns " + (smooth ? "1" : "off") + "\n";
+        text +=
+            "o " + name + "\nusemtl material_" + std::to_string(material + 1) + "\ns " + (smooth ? "1" : "off") + "\n";
     }
 };
 
 const char* type_name(MaterialType t) {
     switch (t) {
-        case MaterialType::Mirror: return "mirror";
-        case MaterialType::Conductor: return "conductor";
-        case MaterialType::Dielectric: return "dielectric";
-        case MaterialType::Plain: return "plain";
+        case MaterialType::Mirror:
+            return "mirror";
+        case MaterialType::Conductor:
+            return "conductor";
+        case MaterialType::Dielectric:
+            return "dielectric";
+        case MaterialType::Plain:
+            return "plain";
     }
     return "plain";
 }
@@ -140,8 +145,9 @@ ObjText scene_to_obj(const SceneDesc& scene, const std::string& mtl_file_name, i
             const Real theta = pi * Real(r) / Real(rings);
             for (int k = 0; k < segments; ++k) {
                 const Real phi = 2 * pi * Real(k) / Real(segments);
-                w.vertex(s.center + Vec3{std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)} *
-                                        s.radius);
+                w.vertex(s.center +
+                         Vec3{std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)} *
+                             s.radius);
             }
         }
         const size_t south = w.vertex(s.center - Vec3{0, s.radius, 0});
@@ -169,7 +175,8 @@ ObjText scene_to_obj(const SceneDesc& scene, const std::string& mtl_file_name, i
     }
     out.obj = std::move(w.text);
 
-    out.mtl = "# materials of " + (scene.path.empty() ? std::string("scene") : scene.path) + ", exported by rtconvert\n\n";
+    out.mtl =
+        "# materials of " + (scene.path.empty() ? std::string("scene") : scene.path) + ", exported by rtconvert\n\n";
     for (size_t i = 0; i < scene.materials.size(); ++i) out.mtl += mtl_material(scene.materials[i], i);
     return out;
 }

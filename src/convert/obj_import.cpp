@@ -41,7 +41,6 @@ std::string num(double d) {
 
 std::string vec(const V3& v) { return num(v[0]) + " " + num(v[1]) + " " + num(v[2]); }
 
-
 // Reads mtllib files relative to the OBJ file. A library that does not exist is a
 // warning (the default material is used); one that exists but cannot be read is an error.
 class MtlReader : public tinyobj::MaterialReader {
@@ -90,7 +89,8 @@ std::pair<size_t, std::string> face_line(const std::string& text, size_t n) {
         std::string line = text.substr(start, end - start);
         if (!line.empty() && line.back() == '\r') line.pop_back();
         const size_t b = line.find_first_not_of(" \t");
-        if (b != std::string::npos && line[b] == 'f' && b + 1 < line.size() && (line[b + 1] == ' ' || line[b + 1] == '\t')) {
+        if (b != std::string::npos && line[b] == 'f' && b + 1 < line.size() &&
+            (line[b + 1] == ' ' || line[b + 1] == '\t')) {
             std::istringstream tokens(line.substr(b + 1));
             std::string t;
             int vertices = 0;
@@ -250,8 +250,8 @@ ObjImport import_obj(const std::string& obj_path, const ConvertOptions& options,
     std::map<std::pair<int, uint64_t>, size_t> mesh_of;
     std::vector<std::pair<int, bool>> mesh_info;  // material id, smooth
     std::vector<std::unordered_map<int, uint32_t>> local;
-    std::vector<int> used_materials;               // tinyobj ids (-1: default), in order of first use
-    std::map<int, size_t> material_slot;           // tinyobj id -> our 1-based id
+    std::vector<int> used_materials;      // tinyobj ids (-1: default), in order of first use
+    std::map<int, size_t> material_slot;  // tinyobj id -> our 1-based id
     size_t face_no = 0, polygons = 0;
     double lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
 
@@ -280,8 +280,10 @@ ObjImport import_obj(const std::string& obj_path, const ConvertOptions& options,
             if (material >= static_cast<int>(materials.size())) material = -1;
             const unsigned group = f < m.smoothing_group_ids.size() ? m.smoothing_group_ids[f] : 0;
             uint64_t key = 0;
-            if (options.shading == ObjShading::Smooth) key = 1;
-            else if (options.shading == ObjShading::Auto) key = group != 0 ? group : normals ? kNormals : 0;
+            if (options.shading == ObjShading::Smooth)
+                key = 1;
+            else if (options.shading == ObjShading::Auto)
+                key = group != 0 ? group : normals ? kNormals : 0;
 
             if (!material_slot.count(material)) {
                 material_slot[material] = used_materials.size() + 1;
@@ -309,8 +311,10 @@ ObjImport import_obj(const std::string& obj_path, const ConvertOptions& options,
                     }
                 }
                 // Fan split: (0, k-1, k) for k >= 2.
-                if (k == 0) corner[0] = vi->second;
-                else if (k == 1) corner[1] = vi->second;
+                if (k == 0)
+                    corner[0] = vi->second;
+                else if (k == 1)
+                    corner[1] = vi->second;
                 else {
                     corner[2] = vi->second;
                     mesh.indices.insert(mesh.indices.end(), {corner[0], corner[1], corner[2]});
@@ -329,9 +333,10 @@ ObjImport import_obj(const std::string& obj_path, const ConvertOptions& options,
         const int id = used_materials[i];
         const tinyobj::material_t* m = id >= 0 ? &materials[size_t(id)] : nullptr;
         std::string kind;
-        mats.push_back(make_material(m, i + 1, obj_path + ": material '" + (m ? m->name : "") + "'", out.warnings, kind));
-        out.notes.push_back("material " + std::to_string(i + 1) + ": " + (m ? "'" + m->name + "' " : "") + "(" +
-                            kind + ")");
+        mats.push_back(
+            make_material(m, i + 1, obj_path + ": material '" + (m ? m->name : "") + "'", out.warnings, kind));
+        out.notes.push_back("material " + std::to_string(i + 1) + ": " + (m ? "'" + m->name + "' " : "") + "(" + kind +
+                            ")");
     }
 
     // Frame the bounding box: a lookAt camera in front of it, up and to the right
@@ -389,15 +394,16 @@ ObjImport import_obj(const std::string& obj_path, const ConvertOptions& options,
     }
     scene["Objects"] = {{"Mesh", meshes}};
     out.scene = {{"Scene", scene}};
-    out.notes.push_back(std::to_string(face_no) + " faces (" + std::to_string(polygons) +
-                        " polygons fan-split) -> " + std::to_string(triangles) + " triangles in " +
-                        std::to_string(out.meshes.size()) + " mesh" + (out.meshes.size() > 1 ? "es" : ""));
+    out.notes.push_back(std::to_string(face_no) + " faces (" + std::to_string(polygons) + " polygons fan-split) -> " +
+                        std::to_string(triangles) + " triangles in " + std::to_string(out.meshes.size()) + " mesh" +
+                        (out.meshes.size() > 1 ? "es" : ""));
     return out;
 }
 #else
 ObjImport import_obj(const std::string& obj_path, const ConvertOptions&, const std::string&) {
-    throw InputError(obj_path + ": OBJ import is not supported by this build (it was made without tinyobjloader, "
-                                "libtinyobjloader-dev)");
+    throw InputError(obj_path +
+                     ": OBJ import is not supported by this build (it was made without tinyobjloader, "
+                     "libtinyobjloader-dev)");
 }
 #endif  // RT_NO_OBJ
 

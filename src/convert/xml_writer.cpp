@@ -32,9 +32,12 @@ bool is_xml_name(const std::string& s) {
 std::string escape_key(const std::string& key) {
     std::string out;
     for (char c : key) {
-        if (c == '~') out += "~0";
-        else if (c == '/') out += "~1";
-        else out += c;
+        if (c == '~')
+            out += "~0";
+        else if (c == '/')
+            out += "~1";
+        else
+            out += c;
     }
     return out;
 }
@@ -71,7 +74,9 @@ private:
         if (v.is_string()) return v.get<std::string>();
         if (v.is_number() || v.is_boolean()) return v.dump();
         fail(ptr, std::string(what) + " must be a string or a number, got " +
-                      (v.is_null() ? "null" : v.is_object() ? "an object" : "an array"));
+                      (v.is_null()     ? "null"
+                       : v.is_object() ? "an object"
+                                       : "an array"));
     }
 
     void fill(pugi::xml_node e, const ojson& v, const std::string& ptr, int depth) const {

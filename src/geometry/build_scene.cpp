@@ -2,8 +2,8 @@
 #include <algorithm>
 #include <chrono>
 #include <thread>
-#include <vector>
 #include <utility>
+#include <vector>
 
 #include "rt/scene.h"
 #include "rt/threads.h"
@@ -232,8 +232,6 @@ Scene build_scene(const SceneDesc& d, const BvhBuildOptions& bvh) {
     return build(copy, bvh);
 }
 
-Scene build_scene(SceneDesc&& d, const BvhBuildOptions& bvh) {
-    return build(d, bvh);
-}
+Scene build_scene(SceneDesc&& d, const BvhBuildOptions& bvh) { return build(d, bvh); }
 
 }  // namespace rt

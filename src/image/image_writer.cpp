@@ -32,8 +32,7 @@ void write_png(const Image& image, const std::string& path) {
     stbi_write_force_png_filter = 2;
     stbi_write_png_compression_level = 4;
     std::string bytes;
-    if (!stbi_write_png_to_func(append_bytes, &bytes, image.width, image.height, 3, image.rgb.data(),
-                                image.width * 3))
+    if (!stbi_write_png_to_func(append_bytes, &bytes, image.width, image.height, 3, image.rgb.data(), image.width * 3))
         throw InputError(path + ": cannot encode PNG");
     write_file_atomic(path, bytes);
 }
@@ -56,9 +55,12 @@ ImageFormat image_format_of(const std::string& path) {
 
 void write_image(const Image& image, const std::string& path) {
     switch (image_format_of(path)) {
-        case ImageFormat::Png: return write_png(image, path);
-        case ImageFormat::Ppm: return write_ppm(image, path);
-        case ImageFormat::Unknown: break;
+        case ImageFormat::Png:
+            return write_png(image, path);
+        case ImageFormat::Ppm:
+            return write_ppm(image, path);
+        case ImageFormat::Unknown:
+            break;
     }
     throw InputError(path + ": unknown image format (the name must end in .png or .ppm)");
 }

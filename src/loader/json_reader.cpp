@@ -28,7 +28,8 @@ std::string json_error_message(const nlohmann::json::exception& e, const std::st
         if (q0 != std::string::npos && q1 > q0) {
             const size_t at = json_text.find(what.substr(q0 + 1, q1 - q0 - 1));
             if (at != std::string::npos) {
-                const size_t line = 1 + static_cast<size_t>(std::count(json_text.begin(), json_text.begin() + at, '\n'));
+                const size_t line =
+                    1 + static_cast<size_t>(std::count(json_text.begin(), json_text.begin() + at, '\n'));
                 const size_t nl = json_text.rfind('\n', at);
                 place = "line " + std::to_string(line) + ", column " +
                         std::to_string(at - (nl == std::string::npos ? 0 : nl + 1) + 1) + ": ";

@@ -44,8 +44,7 @@
 namespace rt {
 namespace {
 
-#if defined(__BYTE_ORDER__) && defined(__ORDER_BIG_ENDIAN__) && \
-    __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
+#if defined(__BYTE_ORDER__) && defined(__ORDER_BIG_ENDIAN__) && __BYTE_ORDER__ == __ORDER_BIG_ENDIAN__
 constexpr bool kHostLittleEndian = false;
 #else
 constexpr bool kHostLittleEndian = true;
@@ -59,13 +58,17 @@ enum class Type : uint8_t { I8, U8, I16, U16, I32, U32, F32, F64 };
 constexpr size_t type_size(Type t) {
     switch (t) {
         case Type::I8:
-        case Type::U8: return 1;
+        case Type::U8:
+            return 1;
         case Type::I16:
-        case Type::U16: return 2;
+        case Type::U16:
+            return 2;
         case Type::I32:
         case Type::U32:
-        case Type::F32: return 4;
-        case Type::F64: return 8;
+        case Type::F32:
+            return 4;
+        case Type::F64:
+            return 8;
     }
     return 0;
 }
@@ -151,9 +154,7 @@ std::string quoted(std::string_view s) {
     return out;
 }
 
-constexpr bool is_space(char c) {
-    return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f';
-}
+constexpr bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\v' || c == '\f'; }
 
 // Words of one header line (separated by blanks; the '\n' is already gone).
 void split_words(std::string_view line, std::vector<std::string_view>& out) {
@@ -171,13 +172,11 @@ void split_words(std::string_view line, std::vector<std::string_view>& out) {
 
 // a * b, saturating at UINT64_MAX.
 uint64_t mul_sat(uint64_t a, uint64_t b) {
-    if (a != 0 && b > std::numeric_limits<uint64_t>::max() / a)
-        return std::numeric_limits<uint64_t>::max();
+    if (a != 0 && b > std::numeric_limits<uint64_t>::max() / a) return std::numeric_limits<uint64_t>::max();
     return a * b;
 }
 uint64_t add_sat(uint64_t a, uint64_t b) {
-    return (b > std::numeric_limits<uint64_t>::max() - a) ? std::numeric_limits<uint64_t>::max()
-                                                          : a + b;
+    return (b > std::numeric_limits<uint64_t>::max() - a) ? std::numeric_limits<uint64_t>::max() : a + b;
 }
 
 // Loads a T stored at p (any alignment), byte-swapping when Swap.
@@ -211,12 +210,18 @@ inline T load(const unsigned char* p) {
 template <class R, bool Swap>
 inline R load_as(const unsigned char* p, Type t) {
     switch (t) {
-        case Type::I8: return load<int8_t, Swap>(p);
-        case Type::U8: return load<uint8_t, Swap>(p);
-        case Type::I16: return load<int16_t, Swap>(p);
-        case Type::U16: return load<uint16_t, Swap>(p);
-        case Type::I32: return load<int32_t, Swap>(p);
-        case Type::U32: return load<uint32_t, Swap>(p);
+        case Type::I8:
+            return load<int8_t, Swap>(p);
+        case Type::U8:
+            return load<uint8_t, Swap>(p);
+        case Type::I16:
+            return load<int16_t, Swap>(p);
+        case Type::U16:
+            return load<uint16_t, Swap>(p);
+        case Type::I32:
+            return load<int32_t, Swap>(p);
+        case Type::U32:
+            return load<uint32_t, Swap>(p);
         case Type::F32:
             if constexpr (std::is_floating_point_v<R>) return load<float, Swap>(p);
             break;
@@ -252,9 +257,7 @@ public:
     ~FileBytes() {
         if (map_) ::munmap(map_, size_);
     }
-    const unsigned char* data() const {
-        return map_ ? static_cast<const unsigned char*>(map_) : heap_.get();
-    }
+    const unsigned char* data() const { return map_ ? static_cast<const unsigned char*>(map_) : heap_.get(); }
     size_t size() const { return size_; }
 
     static constexpr size_t kMapThreshold = size_t(1) << 20;
@@ -273,12 +276,10 @@ public:
         if (S_ISDIR(st.st_mode)) throw InputError(path + ": cannot open: " + errno_text(EISDIR));
         // Devices are refused (/dev/zero would be read until memory runs out); pipes
         // are read, up to kMaxStreamBytes.
-        if (!S_ISREG(st.st_mode) && !S_ISFIFO(st.st_mode))
-            throw InputError(path + ": cannot open: not a regular file");
+        if (!S_ISREG(st.st_mode) && !S_ISFIFO(st.st_mode)) throw InputError(path + ": cannot open: not a regular file");
 
         if (S_ISREG(st.st_mode) && static_cast<uint64_t>(st.st_size) >= kMapThreshold) {
-            void* m = ::mmap(nullptr, static_cast<size_t>(st.st_size), PROT_READ,
-                             MAP_PRIVATE | MAP_POPULATE, fd, 0);
+            void* m = ::mmap(nullptr, static_cast<size_t>(st.st_size), PROT_READ, MAP_PRIVATE | MAP_POPULATE, fd, 0);
             if (m != MAP_FAILED) {
                 ::madvise(m, static_cast<size_t>(st.st_size), MADV_SEQUENTIAL);
                 map_ = m;
@@ -387,17 +388,16 @@ public:
         // tens of GiB gets here.)
         const Element& ve = elements_[vertex_el_];
         if (ve.count > (uint64_t(1) << 32))
-            fail_byte(ve.offset,
-                      "too many vertices (" + std::to_string(ve.count) + ") for 32-bit indices");
+            fail_byte(ve.offset, "too many vertices (" + std::to_string(ve.count) + ") for 32-bit indices");
 
         PlyMesh mesh;
         // Sizes are bounded by the file size now (check_sizes), so these are safe.
-        TriangleSink tris(mesh.indices, face_el_ == kNone
-                                            ? 0
-                                            : 3 * static_cast<size_t>(elements_[face_el_].count));
+        TriangleSink tris(mesh.indices, face_el_ == kNone ? 0 : 3 * static_cast<size_t>(elements_[face_el_].count));
 
         switch (format_) {
-            case Format::Ascii: read_ascii(mesh, tris); break;
+            case Format::Ascii:
+                read_ascii(mesh, tris);
+                break;
             case Format::BinaryLittle:
                 if (kHostLittleEndian)
                     read_binary<false>(mesh, tris);
@@ -440,15 +440,13 @@ private:
         throw InputError(path_ + ": line " + std::to_string(line) + ": " + what);
     }
     static std::string record_text(const Element& el, uint64_t rec) {
-        return "element '" + el.name + "' record " + std::to_string(rec) + " of " +
-               std::to_string(el.count);
+        return "element '" + el.name + "' record " + std::to_string(rec) + " of " + std::to_string(el.count);
     }
     [[noreturn]] RT_PLY_COLD void fail_eof(size_t offset, const Element& el, uint64_t rec) const {
         fail_byte(offset, "unexpected end of file in " + record_text(el, rec));
     }
     static std::string bad_index_text(int64_t v, uint64_t nv) {
-        return "vertex index " + std::to_string(v) + " out of range (vertex count " +
-               std::to_string(nv) + ")";
+        return "vertex index " + std::to_string(v) + " out of range (vertex count " + std::to_string(nv) + ")";
     }
 
     // -- header --------------------------------------------------------------------
@@ -464,16 +462,14 @@ private:
                 fail_byte(pos, "missing end_header (end of file inside the header)");
             }
             const void* nl = std::memchr(data_ + pos, '\n', size_ - pos);
-            const size_t line_end =
-                nl ? static_cast<size_t>(static_cast<const unsigned char*>(nl) - data_) : size_;
+            const size_t line_end = nl ? static_cast<size_t>(static_cast<const unsigned char*>(nl) - data_) : size_;
             const size_t next = nl ? line_end + 1 : size_;
             ++line_no;
             const std::string_view line(reinterpret_cast<const char*>(data_ + pos), line_end - pos);
             split_words(line, w);
 
             if (line_no == 1) {
-                if (w.size() != 1 || w[0] != "ply")
-                    fail_byte(0, "not a PLY file (the first line is not 'ply')");
+                if (w.size() != 1 || w[0] != "ply") fail_byte(0, "not a PLY file (the first line is not 'ply')");
             } else if (w.empty()) {
                 // Blank lines are tolerated.
             } else if (w[0] == "end_header") {
@@ -510,8 +506,7 @@ private:
                 const char* b = w[2].data();
                 const char* e = b + w[2].size();
                 const auto r = std::from_chars(b, e, el.count);
-                if (r.ec != std::errc() || r.ptr != e)
-                    fail_byte(pos, "bad element count " + quoted(w[2]));
+                if (r.ec != std::errc() || r.ptr != e) fail_byte(pos, "bad element count " + quoted(w[2]));
                 for (const Element& other : elements_)
                     if (other.name == el.name) fail_byte(pos, "duplicate element " + quoted(w[1]));
                 elements_.push_back(std::move(el));
@@ -520,12 +515,10 @@ private:
                 Property p;
                 if (w.size() >= 2 && w[1] == "list") {
                     if (w.size() != 5) fail_byte(pos, "malformed list property line");
-                    if (!parse_type(w[2], p.count_type))
-                        fail_byte(pos, "unknown type " + quoted(w[2]));
+                    if (!parse_type(w[2], p.count_type)) fail_byte(pos, "unknown type " + quoted(w[2]));
                     if (!parse_type(w[3], p.type)) fail_byte(pos, "unknown type " + quoted(w[3]));
                     if (!is_integer(p.count_type))
-                        fail_byte(pos,
-                                  "list count type " + quoted(w[2]) + " is not an integer type");
+                        fail_byte(pos, "list count type " + quoted(w[2]) + " is not an integer type");
                     p.is_list = true;
                     p.name = std::string(w[4]);
                 } else {
@@ -535,8 +528,8 @@ private:
                 }
                 elements_.back().props.push_back(std::move(p));
             } else {
-                fail_byte(pos, "unknown header keyword " + quoted(w[0]) +
-                                   " (not a PLY header line; missing end_header?)");
+                fail_byte(pos,
+                          "unknown header keyword " + quoted(w[0]) + " (not a PLY header line; missing end_header?)");
             }
             pos = next;
         }
@@ -568,9 +561,7 @@ private:
         }
         static const char* const axis_names[3] = {"x", "y", "z"};
         for (int a = 0; a < 3; ++a)
-            if (!seen[a])
-                fail_byte(ve.offset,
-                          std::string("element 'vertex' has no property '") + axis_names[a] + "'");
+            if (!seen[a]) fail_byte(ve.offset, std::string("element 'vertex' has no property '") + axis_names[a] + "'");
         vertex_count_ = ve.count;
 
         if (face_el_ == kNone) return;  // a point set: no triangles
@@ -578,16 +569,13 @@ private:
         Property* list = nullptr;
         for (Property& p : fe.props) {
             if (p.name != "vertex_indices" && p.name != "vertex_index") continue;
-            if (!p.is_list)
-                fail_byte(fe.offset, "face property " + quoted(p.name) + " is not a list");
+            if (!p.is_list) fail_byte(fe.offset, "face property " + quoted(p.name) + " is not a list");
             if (list) fail_byte(fe.offset, "element 'face' has more than one vertex index list");
             if (!is_integer(p.type))
-                fail_byte(fe.offset,
-                          "face index type of " + quoted(p.name) + " is not an integer type");
+                fail_byte(fe.offset, "face index type of " + quoted(p.name) + " is not an integer type");
             list = &p;
         }
-        if (!list)
-            fail_byte(fe.offset, "element 'face' has no 'vertex_indices' (or 'vertex_index') list");
+        if (!list) fail_byte(fe.offset, "element 'face' has no 'vertex_indices' (or 'vertex_index') list");
         list->role = Role::Indices;
     }
 
@@ -613,15 +601,13 @@ private:
             }
             needed = add_sat(needed, mul_sat(el.count, rec));
             if (needed > available)
-                fail_byte(
-                    el.offset,
-                    "element '" + el.name + "' declares " + std::to_string(el.count) +
-                        " records, more than the file can hold (this and the elements"
-                        " before it need at least " +
-                        (needed == std::numeric_limits<uint64_t>::max() ? std::string("2^64")
-                                                                        : std::to_string(needed)) +
-                        " bytes, " + std::to_string(body) +
-                        " bytes follow the header; truncated file or bad count)");
+                fail_byte(el.offset, "element '" + el.name + "' declares " + std::to_string(el.count) +
+                                         " records, more than the file can hold (this and the elements"
+                                         " before it need at least " +
+                                         (needed == std::numeric_limits<uint64_t>::max() ? std::string("2^64")
+                                                                                         : std::to_string(needed)) +
+                                         " bytes, " + std::to_string(body) +
+                                         " bytes follow the header; truncated file or bad count)");
         }
     }
 
@@ -668,15 +654,13 @@ private:
         }
     }
 
-    [[noreturn]] RT_PLY_COLD void fail_nonfinite(size_t offset, const Element& el,
-                                                 uint64_t rec) const {
+    [[noreturn]] RT_PLY_COLD void fail_nonfinite(size_t offset, const Element& el, uint64_t rec) const {
         fail_byte(offset, "non-finite coordinate (NaN or infinity) in " + record_text(el, rec));
     }
 
     // Fixed-size vertex records with x, y, z of type T (the common float case).
     template <bool Swap, typename T>
-    void vertices_same_type(const Element& el, size_t pos, size_t stride, const size_t off[3],
-                            Vec3* out) const {
+    void vertices_same_type(const Element& el, size_t pos, size_t stride, const size_t off[3], Vec3* out) const {
         const unsigned char* p = data_ + pos;
         for (uint64_t i = 0; i < el.count; ++i, p += stride, ++out) {
             const double x = static_cast<double>(load<T, Swap>(p + off[0]));
@@ -699,8 +683,7 @@ private:
             // Fixed-size records: one bounds check, then a tight loop.
             const size_t stride = el.fixed_size();
             const uint64_t need = el.count * stride;  // bounded by check_sizes
-            if (need > size_ - pos)
-                fail_eof(pos + ((size_ - pos) / stride) * stride, el, (size_ - pos) / stride);
+            if (need > size_ - pos) fail_eof(pos + ((size_ - pos) / stride) * stride, el, (size_ - pos) / stride);
             size_t off[3] = {0, 0, 0};
             Type types[3] = {Type::F32, Type::F32, Type::F32};
             size_t o = 0;
@@ -755,8 +738,8 @@ private:
     // One face record in any layout, starting at p; returns the end of the record.
     // Polygons are fan-split straight into the output.
     template <bool Swap>
-    const unsigned char* binary_face_record(const Element& el, uint64_t rec, const unsigned char* p,
-                                            PlyMesh& mesh, TriangleSink& tris) const {
+    const unsigned char* binary_face_record(const Element& el, uint64_t rec, const unsigned char* p, PlyMesh& mesh,
+                                            TriangleSink& tris) const {
         const unsigned char* const end = data_ + size_;
         for (const Property& pr : el.props) {
             if (pr.role != Role::Indices) {
@@ -765,8 +748,7 @@ private:
             }
             const int64_t n = list_count<Swap>(pr, el, rec, p);
             if (n < 3)
-                fail_byte(p - data_, "face with " + std::to_string(n) +
-                                         " vertices (at least 3 needed) in " +
+                fail_byte(p - data_, "face with " + std::to_string(n) + " vertices (at least 3 needed) in " +
                                          record_text(el, rec));
             p += type_size(pr.count_type);
             const size_t isz = type_size(pr.type);
@@ -776,8 +758,7 @@ private:
             for (int64_t k = 0; k < n; ++k, p += isz) {
                 const int64_t v = load_int<Swap>(p, pr.type);
                 if (static_cast<uint64_t>(v) >= vertex_count_)  // negative -> huge
-                    fail_byte(p - data_,
-                              bad_index_text(v, vertex_count_) + " in " + record_text(el, rec));
+                    fail_byte(p - data_, bad_index_text(v, vertex_count_) + " in " + record_text(el, rec));
                 fan.add(k, static_cast<uint32_t>(v), tris);
             }
             if (n > 3) ++mesh.polygons_split;
@@ -801,8 +782,7 @@ private:
                 const int64_t a = load<Index, Swap>(p + 1);
                 const int64_t b = load<Index, Swap>(p + 1 + sizeof(Index));
                 const int64_t c = load<Index, Swap>(p + 1 + 2 * sizeof(Index));
-                if (static_cast<uint64_t>(a) < nv && static_cast<uint64_t>(b) < nv &&
-                    static_cast<uint64_t>(c) < nv) {
+                if (static_cast<uint64_t>(a) < nv && static_cast<uint64_t>(b) < nv && static_cast<uint64_t>(c) < nv) {
                     out[0] = static_cast<uint32_t>(a);
                     out[1] = static_cast<uint32_t>(b);
                     out[2] = static_cast<uint32_t>(c);
@@ -824,10 +804,8 @@ private:
     template <bool Swap>
     size_t binary_faces(const Element& el, size_t pos, PlyMesh& mesh, TriangleSink& tris) const {
         if (el.props.size() == 1 && el.props[0].count_type == Type::U8) {
-            if (el.props[0].type == Type::I32)
-                return faces_u8_count<Swap, int32_t>(el, pos, mesh, tris);
-            if (el.props[0].type == Type::U32)
-                return faces_u8_count<Swap, uint32_t>(el, pos, mesh, tris);
+            if (el.props[0].type == Type::I32) return faces_u8_count<Swap, int32_t>(el, pos, mesh, tris);
+            if (el.props[0].type == Type::U32) return faces_u8_count<Swap, uint32_t>(el, pos, mesh, tris);
         }
         const unsigned char* p = data_ + pos;
         for (uint64_t f = 0; f < el.count; ++f) p = binary_face_record<Swap>(el, f, p, mesh, tris);
@@ -871,8 +849,7 @@ private:
     }
 
     // A whole token as a real number (from_chars does not take a leading '+').
-    double ascii_real(const AsciiCursor& c, std::string_view t, const Element& el,
-                      uint64_t rec) const {
+    double ascii_real(const AsciiCursor& c, std::string_view t, const Element& el, uint64_t rec) const {
         const char* b = t.data();
         const char* e = b + t.size();
         if (b != e && *b == '+') ++b;
@@ -886,8 +863,7 @@ private:
     }
 
     // A whole token as an integer (list counts and indices).
-    int64_t ascii_int(const AsciiCursor& c, std::string_view t, const Element& el,
-                      uint64_t rec) const {
+    int64_t ascii_int(const AsciiCursor& c, std::string_view t, const Element& el, uint64_t rec) const {
         const char* b = t.data();
         const char* e = b + t.size();
         if (b != e && *b == '+') ++b;
@@ -899,8 +875,8 @@ private:
     }
 
     void read_ascii(PlyMesh& mesh, TriangleSink& tris) {
-        AsciiCursor c{reinterpret_cast<const char*>(data_ + body_offset_),
-                      reinterpret_cast<const char*>(data_ + size_), body_line_};
+        AsciiCursor c{reinterpret_cast<const char*>(data_ + body_offset_), reinterpret_cast<const char*>(data_ + size_),
+                      body_line_};
         for (size_t e = 0; e < elements_.size(); ++e) {
             const Element& el = elements_[e];
             // An element without properties has empty records: nothing to read, and
@@ -915,31 +891,27 @@ private:
                         if (pr.role == Role::Skip) continue;
                         const double v = ascii_real(c, t, el, i);
                         if (!std::isfinite(v))
-                            fail_line(c.line, "non-finite coordinate " + quoted(t) + " in " +
-                                                  record_text(el, i));
+                            fail_line(c.line, "non-finite coordinate " + quoted(t) + " in " + record_text(el, i));
                         const int a = static_cast<int>(pr.role) - static_cast<int>(Role::X);
                         mesh.positions[static_cast<size_t>(i)][a] = static_cast<Real>(v);
                         continue;
                     }
                     const int64_t n = ascii_int(c, token(c, el, i), el, i);
                     if (n < 0)
-                        fail_line(c.line, "negative list count " + std::to_string(n) + " in " +
-                                              record_text(el, i));
+                        fail_line(c.line, "negative list count " + std::to_string(n) + " in " + record_text(el, i));
                     if (pr.role != Role::Indices) {
                         // Each token uses at least one byte, so this loop ends by EOF.
                         for (int64_t k = 0; k < n; ++k) token(c, el, i);
                         continue;
                     }
                     if (n < 3)
-                        fail_line(c.line, "face with " + std::to_string(n) +
-                                              " vertices (at least 3 needed) in " +
+                        fail_line(c.line, "face with " + std::to_string(n) + " vertices (at least 3 needed) in " +
                                               record_text(el, i));
                     Fan fan;
                     for (int64_t k = 0; k < n; ++k) {
                         const int64_t v = ascii_int(c, token(c, el, i), el, i);
                         if (static_cast<uint64_t>(v) >= vertex_count_)
-                            fail_line(c.line, bad_index_text(v, vertex_count_) + " in " +
-                                                  record_text(el, i));
+                            fail_line(c.line, bad_index_text(v, vertex_count_) + " in " + record_text(el, i));
                         fan.add(k, static_cast<uint32_t>(v), tris);
                     }
                     if (n > 3) ++mesh.polygons_split;

@@ -32,20 +32,27 @@ constexpr double kMaxMagnitude = 1e30;
 
 const char* type_name(const json& v) {
     switch (v.type()) {
-        case json::value_t::null: return "null";
-        case json::value_t::object: return "an object";
-        case json::value_t::array: return "an array";
-        case json::value_t::string: return "a string";
-        case json::value_t::boolean: return "a boolean";
-        case json::value_t::discarded: return "nothing";
+        case json::value_t::null:
+            return "null";
+        case json::value_t::object:
+            return "an object";
+        case json::value_t::array:
+            return "an array";
+        case json::value_t::string:
+            return "a string";
+        case json::value_t::boolean:
+            return "a boolean";
+        case json::value_t::discarded:
+            return "nothing";
         case json::value_t::number_integer:
         case json::value_t::number_unsigned:
-        case json::value_t::number_float: return "a number";
-        case json::value_t::binary: return "binary data";  // never parsed from text
+        case json::value_t::number_float:
+            return "a number";
+        case json::value_t::binary:
+            return "binary data";  // never parsed from text
     }
     return "a number";
 }
-
 
 class Loader {
 public:
@@ -87,9 +94,9 @@ public:
 private:
     std::string file_, dir_;
     SceneDesc& out_;
-    std::vector<Vec3> vertices_;                      // VertexData, 0-based
+    std::vector<Vec3> vertices_;                              // VertexData, 0-based
     std::unordered_map<std::string, uint32_t> material_ids_;  // _id -> index
-    std::map<std::string, int> unknown_;              // generic key path -> occurrences
+    std::map<std::string, int> unknown_;                      // generic key path -> occurrences
 
     [[noreturn]] void fail(const std::string& where, const std::string& what) const {
         throw InputError(file_ + ": " + (where.empty() ? "/" : where) + ": " + what);
@@ -255,8 +262,8 @@ private:
         const long long id = integer(v, mp);
         auto it = material_ids_.find(std::to_string(id));
         if (it == material_ids_.end())
-            fail(mp, "material id " + std::to_string(id) + " does not exist (" +
-                         std::to_string(material_ids_.size()) + " materials defined)");
+            fail(mp, "material id " + std::to_string(id) + " does not exist (" + std::to_string(material_ids_.size()) +
+                         " materials defined)");
         return it->second;
     }
 
@@ -275,8 +282,7 @@ private:
             path += "/_data";
         }
         const std::vector<double> xs = numbers(*data, path);
-        if (xs.size() % 3 != 0)
-            fail(path, "expected x y z triples, got " + std::to_string(xs.size()) + " numbers");
+        if (xs.size() % 3 != 0) fail(path, "expected x y z triples, got " + std::to_string(xs.size()) + " numbers");
         vertices_.resize(xs.size() / 3);
         for (size_t i = 0; i < vertices_.size(); ++i)
             vertices_[i] = {static_cast<Real>(xs[3 * i]), static_cast<Real>(xs[3 * i + 1]),
@@ -291,17 +297,22 @@ private:
         check_keys(*ms, path, path, {"Material"});
         const std::string generic = path + "/Material";
         for_each_item(*ms, path, "Material", [&](const json& m, const std::string& mp) {
-            check_keys(m, mp, generic,
-                       {"_id", "_type", "AmbientReflectance", "DiffuseReflectance", "SpecularReflectance",
-                        "PhongExponent", "MirrorReflectance", "RefractionIndex", "AbsorptionIndex",
-                        "AbsorptionCoefficient"});
+            check_keys(
+                m, mp, generic,
+                {"_id", "_type", "AmbientReflectance", "DiffuseReflectance", "SpecularReflectance", "PhongExponent",
+                 "MirrorReflectance", "RefractionIndex", "AbsorptionIndex", "AbsorptionCoefficient"});
             MaterialDesc d;
             if (const json* t = find(m, "_type")) {
                 const std::string& ty = text(*t, mp + "/_type");
-                if (ty == "mirror") d.type = MaterialType::Mirror;
-                else if (ty == "conductor") d.type = MaterialType::Conductor;
-                else if (ty == "dielectric") d.type = MaterialType::Dielectric;
-                else fail(mp + "/_type", "unknown material type '" + ty + "' (expected mirror, conductor or dielectric)");
+                if (ty == "mirror")
+                    d.type = MaterialType::Mirror;
+                else if (ty == "conductor")
+                    d.type = MaterialType::Conductor;
+                else if (ty == "dielectric")
+                    d.type = MaterialType::Dielectric;
+                else
+                    fail(mp + "/_type",
+                         "unknown material type '" + ty + "' (expected mirror, conductor or dielectric)");
             }
             // Each Blinn-Phong coefficient is 0 0 0 when absent (spec 3: a material "can be
             // defined with" them; a matte wall needs no specular term).
@@ -347,17 +358,20 @@ private:
             bool look_at = false;
             if (const json* t = find(c, "_type")) {
                 const std::string& ty = text(*t, cp + "/_type");
-                if (ty == "lookAt") look_at = true;
-                else if (ty != "simple") fail(cp + "/_type", "unknown camera type '" + ty + "' (expected lookAt)");
+                if (ty == "lookAt")
+                    look_at = true;
+                else if (ty != "simple")
+                    fail(cp + "/_type", "unknown camera type '" + ty + "' (expected lookAt)");
             }
             d.position = vec3(require(c, cp, "Position"), cp + "/Position");
             d.near_distance = positive(require(c, cp, "NearDistance"), cp + "/NearDistance");
             const std::vector<double> res = exactly(require(c, cp, "ImageResolution"), cp + "/ImageResolution", 2);
             for (double r : res)
-                if (r != std::floor(r) || r < 1) fail(cp + "/ImageResolution", "width and height must be positive integers");
+                if (r != std::floor(r) || r < 1)
+                    fail(cp + "/ImageResolution", "width and height must be positive integers");
             if (res[0] * res[1] > static_cast<double>(kMaxPixels))
                 fail(cp + "/ImageResolution", "image too large (" + format_id(res[0]) + " x " + format_id(res[1]) +
-                                                 ", at most " + std::to_string(kMaxPixels) + " pixels)");
+                                                  ", at most " + std::to_string(kMaxPixels) + " pixels)");
             d.width = static_cast<int>(res[0]);
             d.height = static_cast<int>(res[1]);
             d.image_name = text(require(c, cp, "ImageName"), cp + "/ImageName");
@@ -399,8 +413,8 @@ private:
         const std::string generic = path + "/PointLight";
         for_each_item(*ls, path, "PointLight", [&](const json& l, const std::string& lp) {
             check_keys(l, lp, generic, {"_id", "Position", "Intensity"});
-            out_.point_lights.push_back(
-                {vec3(require(l, lp, "Position"), lp + "/Position"), color(require(l, lp, "Intensity"), lp + "/Intensity")});
+            out_.point_lights.push_back({vec3(require(l, lp, "Position"), lp + "/Position"),
+                                         color(require(l, lp, "Intensity"), lp + "/Intensity")});
         });
     }
 
@@ -433,8 +447,10 @@ private:
             mesh.material = material_ref(m, mp);
             if (const json* s = find(m, "_shadingMode")) {
                 const std::string& mode = text(*s, mp + "/_shadingMode");
-                if (mode == "smooth") mesh.shading = ShadingMode::Smooth;
-                else if (mode != "flat") fail(mp + "/_shadingMode", "unknown shading mode '" + mode + "' (expected flat or smooth)");
+                if (mode == "smooth")
+                    mesh.shading = ShadingMode::Smooth;
+                else if (mode != "flat")
+                    fail(mp + "/_shadingMode", "unknown shading mode '" + mode + "' (expected flat or smooth)");
             }
             const std::string fp = mp + "/Faces";
             const json& faces = require(m, mp, "Faces");

@@ -127,8 +127,9 @@ ojson xml_to_json_tree(const std::string& xml_text, const std::string& path) {
     pugi::xml_node root;
     for (const pugi::xml_node& c : doc.children()) {
         if (c.type() != pugi::node_element) continue;
-        if (root) throw InputError(path + ": more than one top-level element (<" + std::string(root.name()) +
-                                   "> and <" + c.name() + ">)");
+        if (root)
+            throw InputError(path + ": more than one top-level element (<" + std::string(root.name()) + "> and <" +
+                             c.name() + ">)");
         root = c;
     }
     if (!root) throw InputError(path + ": no XML element found");
@@ -140,8 +141,9 @@ ojson xml_to_json_tree(const std::string& xml_text, const std::string& path) {
 // This build has no XML support: pugixml's headers were not found (make dist on a
 // machine with only g++). Everything else works; XML input is one error line.
 ojson xml_to_json_tree(const std::string&, const std::string& path) {
-    throw InputError(path + ": XML scenes are not supported by this build (it was made without pugixml, "
-                            "libpugixml-dev); use the JSON scene");
+    throw InputError(path +
+                     ": XML scenes are not supported by this build (it was made without pugixml, "
+                     "libpugixml-dev); use the JSON scene");
 }
 #endif  // RT_NO_XML
 

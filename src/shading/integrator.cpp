@@ -46,8 +46,8 @@ struct Integrator {
             // within the rounding error of p counts as 0: a light lying in the
             // surface's plane would otherwise switch the specular term on and off
             // from pixel to pixel (its irradiance is huge that close).
-            const Real noise = 8 * std::numeric_limits<Real>::epsilon() *
-                               (max_abs(p) + max_abs(light.position)) / std::sqrt(d2);
+            const Real noise =
+                8 * std::numeric_limits<Real>::epsilon() * (max_abs(p) + max_abs(light.position)) / std::sqrt(d2);
             if (!(ndotl > noise)) continue;
             // Shadow ray from p + n * ShadowRayEpsilon (spec 3), never culled. It
             // stops eps short of the light, so a light lying on a surface is not
@@ -100,9 +100,8 @@ struct Integrator {
 
         // Beer's law on the segment a dielectric's interface sent inside it, internally
         // reflected ones included (reference-conventions.md, "Materials").
-        const Vec3 beer = medium != kNoMedium
-                              ? beer_attenuation(s.setup.materials[medium].absorption_coefficient, h.t)
-                              : Vec3{1, 1, 1};
+        const Vec3 beer = medium != kNoMedium ? beer_attenuation(s.setup.materials[medium].absorption_coefficient, h.t)
+                                              : Vec3{1, 1, 1};
         if (depth < s.setup.max_recursion_depth) {
             const Real eps = s.setup.shadow_ray_epsilon;
             const Real cos_i = -dot(ray.dir, nf);
@@ -141,7 +140,8 @@ struct Integrator {
                     if (fr < 1) {
                         const Real eta = eta_i / eta_t;
                         const Vec3 t_dir = normalize(ray.dir * eta + nf * (eta * cos_i - cos_t));
-                        secondary(Vec3{1, 1, 1} * (1 - fr), spawn_ray(p, -nf, eps, t_dir), refr_medium, rays.refraction);
+                        secondary(Vec3{1, 1, 1} * (1 - fr), spawn_ray(p, -nf, eps, t_dir), refr_medium,
+                                  rays.refraction);
                     }
                     break;
                 }

@@ -72,10 +72,14 @@ int main(int argc, char** argv) {
     std::string path;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
-        if (a == "--runs" && i + 1 < argc) runs = std::max(1, std::atoi(argv[++i]));
-        else if (a == "--bins" && i + 1 < argc) opt.bins = std::atoi(argv[++i]);
-        else if (a == "--leaf" && i + 1 < argc) opt.max_leaf = uint32_t(std::atoi(argv[++i]));
-        else path = a;
+        if (a == "--runs" && i + 1 < argc)
+            runs = std::max(1, std::atoi(argv[++i]));
+        else if (a == "--bins" && i + 1 < argc)
+            opt.bins = std::atoi(argv[++i]);
+        else if (a == "--leaf" && i + 1 < argc)
+            opt.max_leaf = uint32_t(std::atoi(argv[++i]));
+        else
+            path = a;
     }
     if (path.empty()) {
         std::fprintf(stderr, "usage: bvh_bench [--runs N] [--bins N] [--leaf N] scene.json\n");
@@ -100,11 +104,12 @@ int main(int argc, char** argv) {
             cost = sah_cost(bvh);
             nodes = bvh.nodes.size();
         }
-        std::printf("%s: %zu primitives, medians of %d: boxes %.3f s, build %.3f s wall, %.3f s cpu (first %.3f s); "
-                    "%zu nodes, SAH cost %.4f; fastest %.3f s wall, %.3f s cpu\n",
-                    path.c_str(), s.geometry.triangles.size() + s.geometry.spheres.size(), runs, median(box_wall), median(wall),
-                    median(cpu), wall[0], nodes, cost, *std::min_element(wall.begin(), wall.end()),
-                    *std::min_element(cpu.begin(), cpu.end()));
+        std::printf(
+            "%s: %zu primitives, medians of %d: boxes %.3f s, build %.3f s wall, %.3f s cpu (first %.3f s); "
+            "%zu nodes, SAH cost %.4f; fastest %.3f s wall, %.3f s cpu\n",
+            path.c_str(), s.geometry.triangles.size() + s.geometry.spheres.size(), runs, median(box_wall), median(wall),
+            median(cpu), wall[0], nodes, cost, *std::min_element(wall.begin(), wall.end()),
+            *std::min_element(cpu.begin(), cpu.end()));
     } catch (const std::exception& e) {
         std::fprintf(stderr, "%s\n", e.what());
         return 1;

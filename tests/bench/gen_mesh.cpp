@@ -57,22 +57,34 @@ struct Noise {
 
     // Gradient at a lattice point: one of the 12 cube-edge directions.
     double grad(int64_t ix, int64_t iy, int64_t iz, double fx, double fy, double fz) const {
-        uint64_t h = mix64(seed ^ mix64(static_cast<uint64_t>(ix) * 0x8da6b343ull ^
-                                        static_cast<uint64_t>(iy) * 0xd8163841ull ^
-                                        static_cast<uint64_t>(iz) * 0xcb1ab31full));
+        uint64_t h =
+            mix64(seed ^ mix64(static_cast<uint64_t>(ix) * 0x8da6b343ull ^ static_cast<uint64_t>(iy) * 0xd8163841ull ^
+                               static_cast<uint64_t>(iz) * 0xcb1ab31full));
         switch (h % 12) {
-            case 0: return fx + fy;
-            case 1: return -fx + fy;
-            case 2: return fx - fy;
-            case 3: return -fx - fy;
-            case 4: return fx + fz;
-            case 5: return -fx + fz;
-            case 6: return fx - fz;
-            case 7: return -fx - fz;
-            case 8: return fy + fz;
-            case 9: return -fy + fz;
-            case 10: return fy - fz;
-            default: return -fy - fz;
+            case 0:
+                return fx + fy;
+            case 1:
+                return -fx + fy;
+            case 2:
+                return fx - fy;
+            case 3:
+                return -fx - fy;
+            case 4:
+                return fx + fz;
+            case 5:
+                return -fx + fz;
+            case 6:
+                return fx - fz;
+            case 7:
+                return -fx - fz;
+            case 8:
+                return fy + fz;
+            case 9:
+                return -fy + fz;
+            case 10:
+                return fy - fz;
+            default:
+                return -fy - fz;
         }
     }
     static double fade(double t) { return t * t * t * (t * (t * 6 - 15) + 10); }
@@ -87,8 +99,8 @@ struct Noise {
         const double x00 = lerp(grad(ix, iy, iz, fx, fy, fz), grad(ix + 1, iy, iz, fx - 1, fy, fz), u);
         const double x10 = lerp(grad(ix, iy + 1, iz, fx, fy - 1, fz), grad(ix + 1, iy + 1, iz, fx - 1, fy - 1, fz), u);
         const double x01 = lerp(grad(ix, iy, iz + 1, fx, fy, fz - 1), grad(ix + 1, iy, iz + 1, fx - 1, fy, fz - 1), u);
-        const double x11 = lerp(grad(ix, iy + 1, iz + 1, fx, fy - 1, fz - 1),
-                                grad(ix + 1, iy + 1, iz + 1, fx - 1, fy - 1, fz - 1), u);
+        const double x11 =
+            lerp(grad(ix, iy + 1, iz + 1, fx, fy - 1, fz - 1), grad(ix + 1, iy + 1, iz + 1, fx - 1, fy - 1, fz - 1), u);
         return lerp(lerp(x00, x10, v), lerp(x01, x11, v), w);
     }
 
@@ -138,9 +150,7 @@ double wrap_dist(double s, double centre) {  // distance on the unit circle of s
     d -= std::floor(d);
     return std::min(d, 1 - d);
 }
-double bump(double s, double centre, double kappa) {
-    return std::exp(kappa * (std::cos(2 * kPi * (s - centre)) - 1));
-}
+double bump(double s, double centre, double kappa) { return std::exp(kappa * (std::cos(2 * kPi * (s - centre)) - 1)); }
 // 1 within half-width w of centre, falling smoothly to 0 at 1.5 w.
 double box(double s, double centre, double w) {
     const double d = wrap_dist(s, centre);
@@ -221,7 +231,8 @@ std::string scene_json(const std::string& ply, const std::string& image, const s
         "FovY": "38",
         "NearDistance": "1",
         "ImageResolution": "800 480",
-        "ImageName": ")" + image + R"("
+        "ImageName": ")" +
+           image + R"("
       }
     },
     "Lights": {
@@ -245,7 +256,8 @@ std::string scene_json(const std::string& ply, const std::string& image, const s
     },
     "Materials": {
       "Material": [
-)" + material + R"(,
+)" + material +
+           R"(,
         {
           "_id": "2",
           "_type": "mirror",
@@ -264,7 +276,8 @@ std::string scene_json(const std::string& ply, const std::string& image, const s
           "Material": "1",
           "_shadingMode": "smooth",
           "Faces": {
-            "_plyFile": ")" + ply + R"("
+            "_plyFile": ")" +
+           ply + R"("
           }
         },
         {
@@ -318,9 +331,12 @@ uint64_t parse_count(const std::string& s) {
     const double v = std::strtod(s.c_str(), &end);
     double mul = 1;
     const std::string suffix(end);
-    if (suffix == "k" || suffix == "K") mul = 1e3;
-    else if (suffix == "m" || suffix == "M") mul = 1e6;
-    else if (!suffix.empty()) die("bad triangle count '" + s + "' (use e.g. 1000000, 500K, 4M)");
+    if (suffix == "k" || suffix == "K")
+        mul = 1e3;
+    else if (suffix == "m" || suffix == "M")
+        mul = 1e6;
+    else if (!suffix.empty())
+        die("bad triangle count '" + s + "' (use e.g. 1000000, 500K, 4M)");
     const double n = v * mul;
     if (!(n >= 1000) || n > 1.0e9) die("triangle count must be between 1000 and 1e9");
     return static_cast<uint64_t>(std::llround(n));
@@ -343,15 +359,21 @@ int main(int argc, char** argv) {
             if (i + 1 >= argc) die(a + " needs a value");
             return argv[++i];
         };
-        if (a == "--out-dir" || a == "-o") out_dir = value();
-        else if (a == "--name") name = value();
-        else if (a == "--seed") seed = std::strtoull(value().c_str(), nullptr, 10);
+        if (a == "--out-dir" || a == "-o")
+            out_dir = value();
+        else if (a == "--name")
+            name = value();
+        else if (a == "--seed")
+            seed = std::strtoull(value().c_str(), nullptr, 10);
         else if (a == "-h" || a == "--help") {
             std::printf("usage: gen_mesh [--out-dir DIR] [--name NAME] [--seed N] TRIANGLES (e.g. 1M, 4M, 16M)\n");
             return 0;
-        } else if (!a.empty() && a[0] == '-') die("unknown option " + a);
-        else if (count_arg.empty()) count_arg = a;
-        else die("one triangle count only");
+        } else if (!a.empty() && a[0] == '-')
+            die("unknown option " + a);
+        else if (count_arg.empty())
+            count_arg = a;
+        else
+            die("one triangle count only");
     }
     if (count_arg.empty()) die("usage: gen_mesh [--out-dir DIR] [--name NAME] [--seed N] TRIANGLES");
     const uint64_t target = parse_count(count_arg);
@@ -407,7 +429,7 @@ int main(int argc, char** argv) {
         const V3 c = knot(phi[i]);
         const V3 t = normalize(knot_tangent(phi[i]));
         const V3 n = normalize(cross(V3{0, 0, 1}, t));  // t is never vertical on this knot
-        const V3 b = cross(t, n);                         // (t, n, b) right-handed
+        const V3 b = cross(t, n);                       // (t, n, b) right-handed
         const double beta = kBunchVBeta * bump(static_cast<double>(i) / static_cast<double>(nu), kBunchV, kBunchVKappa);
         for (uint64_t j = 0; j < nv; ++j) {
             double ct = cos_t[j], st = sin_t[j];
@@ -522,13 +544,13 @@ int main(int argc, char** argv) {
         out.commit();
     }
     const double total_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    std::printf("%s.ply: %llu triangles (%llu x %llu grid x 2), %llu vertices; %.1f%% needles "
-                "(aspect > 10), %.2f%% above 50, worst %.0f; area %.4g, volume %.4g; "
-                "written in %.2fs (%.2fs with checks), + _plain/_glass/_gold.json\n",
-                base.c_str(), static_cast<unsigned long long>(ntris), static_cast<unsigned long long>(nu),
-                static_cast<unsigned long long>(nv), static_cast<unsigned long long>(nverts),
-                100.0 * static_cast<double>(needles) / static_cast<double>(ntris),
-                100.0 * static_cast<double>(worst_count) / static_cast<double>(ntris), worst, area, volume, gen_s,
-                total_s);
+    std::printf(
+        "%s.ply: %llu triangles (%llu x %llu grid x 2), %llu vertices; %.1f%% needles "
+        "(aspect > 10), %.2f%% above 50, worst %.0f; area %.4g, volume %.4g; "
+        "written in %.2fs (%.2fs with checks), + _plain/_glass/_gold.json\n",
+        base.c_str(), static_cast<unsigned long long>(ntris), static_cast<unsigned long long>(nu),
+        static_cast<unsigned long long>(nv), static_cast<unsigned long long>(nverts),
+        100.0 * static_cast<double>(needles) / static_cast<double>(ntris),
+        100.0 * static_cast<double>(worst_count) / static_cast<double>(ntris), worst, area, volume, gen_s, total_s);
     return 0;
 }

@@ -25,9 +25,7 @@ std::string g_scene_path;
 long g_nan_inputs = 0;
 bool g_nan_abort = false;
 
-void report_nans() {
-    std::fprintf(stderr, "fuzz_scene: %ld input(s) gave NaN radiance\n", g_nan_inputs);
-}
+void report_nans() { std::fprintf(stderr, "fuzz_scene: %ld input(s) gave NaN radiance\n", g_nan_inputs); }
 
 void write_file(const std::string& path, const std::string& bytes) {
     FILE* f = std::fopen(path.c_str(), "wb");

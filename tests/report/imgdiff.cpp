@@ -81,8 +81,10 @@ std::string compare(const std::string& a_path, const std::string& b_path, const 
         const bool off = worst > 1;
         if (off) {
             ++over1;
-            if (sa < sb) ++darker;
-            else ++brighter;
+            if (sa < sb)
+                ++darker;
+            else
+                ++brighter;
         }
         if (!vis.empty()) {
             unsigned char* v = &vis[3 * p];
@@ -101,8 +103,10 @@ std::string compare(const std::string& a_path, const std::string& b_path, const 
     const double n = double(pixels) * 3;
     const double mse = n > 0 ? sum_sq / n : 0;
     char psnr[64];
-    if (mse == 0) std::snprintf(psnr, sizeof psnr, "null");
-    else std::snprintf(psnr, sizeof psnr, "%.3f", 10.0 * std::log10(255.0 * 255.0 / mse));
+    if (mse == 0)
+        std::snprintf(psnr, sizeof psnr, "null");
+    else
+        std::snprintf(psnr, sizeof psnr, "%.3f", 10.0 * std::log10(255.0 * 255.0 / mse));
     char buf[512];
     std::snprintf(buf, sizeof buf,
                   "{\"width\": %d, \"height\": %d, \"pixels\": %zu, \"changed\": %zu, \"over1\": %zu, "
