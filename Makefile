@@ -5,8 +5,11 @@
 #   make CXXFLAGS="-O2 -g"  choose optimisation and debug flags; the flags below that the
 #                           code needs are appended to any CXXFLAGS, CPPFLAGS or LDLIBS
 #                           given on the command line (override), never replaced
+#   make MARCH=x86-64       build for baseline x86-64 (no AVX: the scalar kernels) in its own
+#                           object folder; the default MARCH=native uses this CPU's SIMD
 CXX      ?= g++
-CXXFLAGS ?= -O3 -march=native
+MARCH    ?= native
+CXXFLAGS ?= -O3 -march=$(MARCH)
 # No fused multiply-add contraction: the watertight triangle test needs its edge
 # functions evaluated exactly alike for both triangles sharing an edge, which
 # contraction breaks (rays slipped through the diagonal of simple.json's quad).
@@ -29,6 +32,10 @@ ifeq ($(PRECISION),float)
   BUILD := build/float
 else
   BUILD := build/double
+endif
+# Objects of another target than this CPU live beside the native ones (build/double-x86-64).
+ifneq ($(MARCH),native)
+  BUILD := $(BUILD)-$(MARCH)
 endif
 
 # Every src/**/*.cpp is library code except program entry points (main.cpp, *_main.cpp).
