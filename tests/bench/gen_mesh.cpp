@@ -305,11 +305,24 @@ std::string scene_json(const SceneDesc& d, const std::string& image) {
     return object(0, {{"Scene", object(2, scene)}}) + "\n";
 }
 
-const Fields kPlain{{"_id", "1"},
-                    {"AmbientReflectance", "0.15 0.12 0.1"},
-                    {"DiffuseReflectance", "0.55 0.42 0.32"},
-                    {"SpecularReflectance", "0.5 0.5 0.5"},
-                    {"PhongExponent", "40"}};
+// A plain (Blinn-Phong only) material with _id 1.
+Fields phong(const char* ambient, const char* diffuse, const char* specular, const char* exponent) {
+    return {{"_id", "1"},
+            {"AmbientReflectance", ambient},
+            {"DiffuseReflectance", diffuse},
+            {"SpecularReflectance", specular},
+            {"PhongExponent", exponent}};
+}
+// A mirror material: a plain one plus MirrorReflectance, with the given _id.
+Fields mirror(int id, const char* ambient, const char* diffuse, const char* specular, const char* exponent,
+              const char* reflectance) {
+    Fields f = phong(ambient, diffuse, specular, exponent);
+    f[0].second = std::to_string(id);
+    f.insert(f.begin() + 1, {"_type", "mirror"});
+    f.emplace_back("MirrorReflectance", reflectance);
+    return f;
+}
+const Fields kPlain = phong("0.15 0.12 0.1", "0.55 0.42 0.32", "0.5 0.5 0.5", "40");
 const Fields kGlass{{"_id", "1"},
                     {"_type", "dielectric"},
                     {"AmbientReflectance", "0 0 0"},
@@ -329,13 +342,7 @@ const Fields kGold{{"_id", "1"},
                    {"RefractionIndex", "0.370"},
                    {"AbsorptionIndex", "2.820"}};
 // The floor's half mirror (material 2 of the knot's scenes).
-const Fields kFloorMirror{{"_id", "2"},
-                          {"_type", "mirror"},
-                          {"AmbientReflectance", "0.1 0.1 0.1"},
-                          {"DiffuseReflectance", "0.5 0.5 0.5"},
-                          {"SpecularReflectance", "0 0 0"},
-                          {"PhongExponent", "1"},
-                          {"MirrorReflectance", "0.5 0.5 0.5"}};
+const Fields kFloorMirror = mirror(2, "0.1 0.1 0.1", "0.5 0.5 0.5", "0 0 0", "1", "0.5 0.5 0.5");
 
 Fields with_id(Fields f, int id) {
     f[0].second = std::to_string(id);
@@ -355,6 +362,21 @@ std::string floor_vertices(double half, double z) {
     const std::string h = num(half), m = num(-half), zs = num(z);
     return m + " " + m + " " + zs + " " + h + " " + m + " " + zs + " " + h + " " + h + " " + zs + " " + m + " " + h +
            " " + zs;
+}
+
+// An object of radius ~70 at the origin over the half-mirror floor at height floor_z, lit
+// by two point lights from the camera's side (the blob's and the soup's scenes).
+SceneDesc over_mirror_floor(const std::string& ply, bool smooth, V3 position, V3 gaze, const char* resolution,
+                            double floor_z) {
+    SceneDesc d;
+    d.position = position;
+    d.gaze = gaze;
+    d.fovy = "42";
+    d.resolution = resolution;
+    d.lights = {{{250, -250, 250}, 4e7}, {{-320, -120, 180}, 2.5e7}};
+    d.vertex_data = floor_vertices(1000, floor_z);
+    d.meshes = {ply_mesh(ply, smooth), kFloorMesh};
+    return d;
 }
 
 // ---- shapes -----------------------------------------------------------------------
@@ -584,14 +606,8 @@ Generated make_blob(uint64_t target, uint64_t seed, const std::string& name) {
     g.comment = "noisy geodesic icosphere, frequency " + u64(n) + ", seed " + u64(seed);
     g.detail = "icosphere, 20 x " + u64(n) + "^2";
 
-    SceneDesc d;
-    d.position = {190, -250, 95};
-    d.gaze = {0, 0, -12};
-    d.fovy = "42";
-    d.resolution = "1024 1024";
-    d.lights = {{{250, -250, 250}, 4e7}, {{-320, -120, 180}, 2.5e7}};
-    d.vertex_data = floor_vertices(1000, -kRadius * (1 + kAmp) - 3);
-    d.meshes = {ply_mesh(name + ".ply", true), kFloorMesh};
+    SceneDesc d = over_mirror_floor(name + ".ply", true, {190, -250, 95}, {0, 0, -12}, "1024 1024",
+                                    -kRadius * (1 + kAmp) - 3);
     for (const auto& [suffix, material] : {std::pair{"plain", kPlain}, {"glass", kGlass}}) {
         d.materials = {material, kFloorMirror};
         g.variants.push_back({suffix, d});
@@ -654,19 +670,8 @@ Generated make_terrain(uint64_t target, uint64_t seed, const std::string& name) 
                              {"Radius", num(s.r)}});
     }
     d.vertex_data = vd;
-    const Fields ground{{"_id", "1"},
-                        {"AmbientReflectance", "0.12 0.12 0.1"},
-                        {"DiffuseReflectance", "0.42 0.45 0.3"},
-                        {"SpecularReflectance", "0.1 0.1 0.1"},
-                        {"PhongExponent", "8"}};
-    const Fields mirror{{"_id", "2"},
-                        {"_type", "mirror"},
-                        {"AmbientReflectance", "0 0 0"},
-                        {"DiffuseReflectance", "0.05 0.05 0.05"},
-                        {"SpecularReflectance", "0.5 0.5 0.5"},
-                        {"PhongExponent", "100"},
-                        {"MirrorReflectance", "0.9 0.9 0.9"}};
-    d.materials = {ground, mirror, with_id(kGlass, 3), with_id(kGold, 4), with_id(kPlain, 5)};
+    const Fields ground = phong("0.12 0.12 0.1", "0.42 0.45 0.3", "0.1 0.1 0.1", "8");
+    d.materials = {ground, mirror(2, "0 0 0", "0.05 0.05 0.05", "0.5 0.5 0.5", "100", "0.9 0.9 0.9"), with_id(kGlass, 3), with_id(kGold, 4), with_id(kPlain, 5)};
     d.meshes = {ply_mesh(name + ".ply", true)};
     g.variants.push_back({"plain", d});
     return g;
@@ -748,11 +753,7 @@ Generated make_city(uint64_t target, uint64_t seed, const std::string& name) {
     d.resolution = "1024 768";
     d.lights = {{{2000, -1000, 3000}, 1.5e9}, {{-1500, -600, 900}, 3e8}};
     d.vertex_data = floor_vertices(3000, 0);
-    const Fields concrete{{"_id", "1"},
-                          {"AmbientReflectance", "0.12 0.12 0.12"},
-                          {"DiffuseReflectance", "0.5 0.5 0.52"},
-                          {"SpecularReflectance", "0.3 0.3 0.3"},
-                          {"PhongExponent", "20"}};
+    const Fields concrete = phong("0.12 0.12 0.12", "0.5 0.5 0.52", "0.3 0.3 0.3", "20");
     d.materials = {concrete, kFloorMirror};
     d.meshes = {ply_mesh(name + ".ply", false), kFloorMesh};
     g.variants.push_back({"plain", d});
@@ -783,14 +784,7 @@ Generated make_soup(uint64_t target, uint64_t seed, const std::string& name) {
     g.comment = "random triangle soup in a ball, seed " + u64(seed);
     g.detail = "soup";
 
-    SceneDesc d;
-    d.position = {170, -230, 80};
-    d.gaze = {0, 0, -8};
-    d.fovy = "42";
-    d.resolution = "720 720";
-    d.lights = {{{250, -250, 250}, 4e7}, {{-320, -120, 180}, 2.5e7}};
-    d.vertex_data = floor_vertices(1000, -kBall - 5);
-    d.meshes = {ply_mesh(name + ".ply", false), kFloorMesh};
+    SceneDesc d = over_mirror_floor(name + ".ply", false, {170, -230, 80}, {0, 0, -8}, "720 720", -kBall - 5);
     d.materials = {kPlain, kFloorMirror};
     g.variants.push_back({"plain", d});
     return g;
