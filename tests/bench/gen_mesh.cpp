@@ -270,8 +270,8 @@ struct SceneDesc {
     std::string fovy, resolution;
     std::string ambient = "25 25 25";
     std::vector<std::pair<V3, double>> lights;  // position, intensity (grey)
-    std::string vertex_data;                   // "x y z ..." (ground corners, sphere centres)
-    std::vector<Fields> materials;             // _id "1" is the mesh's
+    std::string vertex_data;                    // "x y z ..." (ground corners, sphere centres)
+    std::vector<Fields> materials;              // _id "1" is the mesh's
     std::vector<Fields> meshes, spheres;
 };
 
@@ -279,7 +279,8 @@ std::string scene_json(const SceneDesc& d, const std::string& image) {
     std::vector<Fields> lights;
     for (size_t i = 0; i < d.lights.size(); ++i) {
         const std::string I = num(d.lights[i].second);
-        lights.push_back({{"_id", std::to_string(i + 1)}, {"Position", num3(d.lights[i].first)},
+        lights.push_back({{"_id", std::to_string(i + 1)},
+                          {"Position", num3(d.lights[i].first)},
                           {"Intensity", I + " " + I + " " + I}});
     }
     Fields objects{{"Mesh", array(6, d.meshes)}};
@@ -355,9 +356,10 @@ Fields ply_mesh(const std::string& ply, bool smooth) {
     return m;
 }
 // A square floor of two triangles at height z (vertices 1-4), material 2.
-const Fields kFloorMesh{{"_id", "2"},
-                        {"Material", "2"},
-                        {"Faces", "{\n            \"_data\": \"1 2 3 3 4 1\",\n            \"_type\": \"triangle\"\n          }"}};
+const Fields kFloorMesh{
+    {"_id", "2"},
+    {"Material", "2"},
+    {"Faces", "{\n            \"_data\": \"1 2 3 3 4 1\",\n            \"_type\": \"triangle\"\n          }"}};
 std::string floor_vertices(double half, double z) {
     const std::string h = num(half), m = num(-half), zs = num(z);
     return m + " " + m + " " + zs + " " + h + " " + m + " " + zs + " " + h + " " + h + " " + zs + " " + m + " " + h +
@@ -606,8 +608,8 @@ Generated make_blob(uint64_t target, uint64_t seed, const std::string& name) {
     g.comment = "noisy geodesic icosphere, frequency " + u64(n) + ", seed " + u64(seed);
     g.detail = "icosphere, 20 x " + u64(n) + "^2";
 
-    SceneDesc d = over_mirror_floor(name + ".ply", true, {190, -250, 95}, {0, 0, -12}, "1024 1024",
-                                    -kRadius * (1 + kAmp) - 3);
+    SceneDesc d =
+        over_mirror_floor(name + ".ply", true, {190, -250, 95}, {0, 0, -12}, "1024 1024", -kRadius * (1 + kAmp) - 3);
     for (const auto& [suffix, material] : {std::pair{"plain", kPlain}, {"glass", kGlass}}) {
         d.materials = {material, kFloorMirror};
         g.variants.push_back({suffix, d});
@@ -631,7 +633,9 @@ Generated make_terrain(uint64_t target, uint64_t seed, const std::string& name) 
         const double valley = 1 - std::exp(-x * x / (2 * 250.0 * 250.0));  // a valley along y at x = 0
         return kRelief * (h + 0.6 * valley);
     };
-    auto x_of = [&](uint64_t i) { return -kHalfWidth + 2 * kHalfWidth * static_cast<double>(i) / static_cast<double>(cx); };
+    auto x_of = [&](uint64_t i) {
+        return -kHalfWidth + 2 * kHalfWidth * static_cast<double>(i) / static_cast<double>(cx);
+    };
     auto y_of = [&](uint64_t j) { return kLength * static_cast<double>(j) / static_cast<double>(cy) - 200; };
     g.pos.reserve(3 * nx * ny);
     for (uint64_t j = 0; j < ny; ++j)
@@ -671,7 +675,8 @@ Generated make_terrain(uint64_t target, uint64_t seed, const std::string& name) 
     }
     d.vertex_data = vd;
     const Fields ground = phong("0.12 0.12 0.1", "0.42 0.45 0.3", "0.1 0.1 0.1", "8");
-    d.materials = {ground, mirror(2, "0 0 0", "0.05 0.05 0.05", "0.5 0.5 0.5", "100", "0.9 0.9 0.9"), with_id(kGlass, 3), with_id(kGold, 4), with_id(kPlain, 5)};
+    d.materials = {ground, mirror(2, "0 0 0", "0.05 0.05 0.05", "0.5 0.5 0.5", "100", "0.9 0.9 0.9"),
+                   with_id(kGlass, 3), with_id(kGold, 4), with_id(kPlain, 5)};
     d.meshes = {ply_mesh(name + ".ply", true)};
     g.variants.push_back({"plain", d});
     return g;
@@ -689,7 +694,8 @@ Generated make_city(uint64_t target, uint64_t seed, const std::string& name) {
     struct Cluster {
         double x, y, sigma, tall;
     } cl[kClusters];
-    for (auto& c : cl) c = {rng.uniform(-800, 800), rng.uniform(-800, 800), rng.log_uniform(60, 260), rng.uniform(1, 4)};
+    for (auto& c : cl)
+        c = {rng.uniform(-800, 800), rng.uniform(-800, 800), rng.log_uniform(60, 260), rng.uniform(1, 4)};
     g.pos.reserve(24 * boxes);
     g.tri.reserve(36 * boxes);
     V3 prev_lo{0, 0, 0}, prev_hi{0, 0, 0};
@@ -697,7 +703,7 @@ Generated make_city(uint64_t target, uint64_t seed, const std::string& name) {
     for (uint64_t b = 0; b < boxes; ++b) {
         const Cluster& c = cl[rng.next() % kClusters];
         const double kind = rng.uniform();
-        double w, dep, h;  // footprint and height
+        double w, dep, h;   // footprint and height
         if (kind < 0.70) {  // street furniture: 0.1 .. 2 units
             w = rng.log_uniform(0.1, 2);
             dep = w * rng.log_uniform(0.5, 2);
@@ -816,12 +822,14 @@ std::string count_name(uint64_t n) {
 const struct {
     const char* name;
     Generated (*make)(uint64_t target, uint64_t seed, const std::string& name);
-} kShapes[] = {{"knot", make_knot}, {"blob", make_blob}, {"terrain", make_terrain}, {"city", make_city}, {"soup", make_soup}};
+} kShapes[] = {
+    {"knot", make_knot}, {"blob", make_blob}, {"terrain", make_terrain}, {"city", make_city}, {"soup", make_soup}};
 
 }  // namespace
 
 int main(int argc, char** argv) {
-    const char* usage = "usage: gen_mesh [--shape knot|blob|terrain|city|soup] [--out-dir DIR] [--name NAME] [--seed N] TRIANGLES";
+    const char* usage =
+        "usage: gen_mesh [--shape knot|blob|terrain|city|soup] [--out-dir DIR] [--name NAME] [--seed N] TRIANGLES";
     std::string out_dir = ".", name, count_arg, shape = "knot";
     uint64_t seed = 795;
     for (int i = 1; i < argc; ++i) {
@@ -938,9 +946,9 @@ int main(int argc, char** argv) {
         "%s.ply: %llu triangles (%s), %llu vertices; %.1f%% needles (aspect > 10), %.2f%% above 50, "
         "worst %.0f; area %.4g (triangles %.3g to %.3g), volume %.4g; written in %.2fs (%.2fs with checks), "
         "+ %s.json\n",
-        base.c_str(), static_cast<unsigned long long>(ntris), g.detail.c_str(),
-        static_cast<unsigned long long>(nverts), 100.0 * static_cast<double>(needles) / static_cast<double>(ntris),
-        100.0 * static_cast<double>(worst_count) / static_cast<double>(ntris), worst, area, min_area, max_area,
-        volume, gen_s, total_s, suffixes.c_str());
+        base.c_str(), static_cast<unsigned long long>(ntris), g.detail.c_str(), static_cast<unsigned long long>(nverts),
+        100.0 * static_cast<double>(needles) / static_cast<double>(ntris),
+        100.0 * static_cast<double>(worst_count) / static_cast<double>(ntris), worst, area, min_area, max_area, volume,
+        gen_s, total_s, suffixes.c_str());
     return 0;
 }
