@@ -22,7 +22,8 @@
 //            to a grid so that many faces are coplanar, some stacked) in clusters with empty
 //            space between, over a half-mirror ground. Scene: _plain.
 //   soup     random triangles of random shape and orientation (log-uniform sizes) filling
-//            a ball, half-transparent as a cloud, over a mirror floor. Scene: _plain.
+//            a ball, a cloud that rays enter some way before they hit, over a mirror
+//            floor. Scene: _plain.
 //
 // Written: DIR/NAME.ply and DIR/NAME_<variant>.json (NAME defaults to <shape>_<count>, e.g.
 // knot_1m, blob_1m). Each file is written under a temporary name and renamed, so an
