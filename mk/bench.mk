@@ -1,7 +1,9 @@
 # Benchmarks against refrender (../shared/tools): tests/bench/bench.py, tests/bench/gen_mesh.cpp.
-#   make bench                          every complete official scene + knot_{1m,4m,16m}_{plain,glass,gold}, 5 runs
+#   make bench                          every complete official scene + knot_{1m,4m,16m}_{plain,glass,gold}
+#                                       + blob_1m_{plain,glass}, terrain_1m, city_1m, soup_1m (docs/bench-scenes.md),
+#                                       each with --cull and with --no-cull on both sides, 5 runs
 #   make bench-quick                    the same without the 16M scenes, 3 runs
-#   make bench BENCH_ARGS="--scenes bunny,knot_1m --runs 3 --threads 2"   (see bench.py --help)
+#   make bench BENCH_ARGS="--scenes bunny,knot_1m --runs 3 --threads 2 --cull-modes no-cull"   (see bench.py --help)
 # Generated scenes go to build/bench/scenes/, the report to build/bench/bench.{md,json}.
 BENCH_GEN  := build/bench/gen_mesh
 BENCH_ARGS ?=

@@ -5,8 +5,14 @@
     make bench / make bench-quick          (extra arguments: BENCH_ARGS="...")
 
 Scenes: every complete official scene (../shared/scenes/hw1/MANIFEST.tsv, column 4), then
-our large ones, knot_<size>_{plain,glass,gold} (sizes 1M, 4M, 16M; --quick skips 16M),
-generated into build/bench/scenes/ by build/bench/gen_mesh when missing or older than it.
+our large ones, knot_<size>_{plain,glass,gold} (sizes 1M, 4M, 16M; --quick skips 16M), then
+the other generated shapes at 1M (--shape-sizes): blob_{plain,glass}, terrain, city, soup
+(docs/bench-scenes.md), generated into build/bench/scenes/ by build/bench/gen_mesh when
+missing or older than it.
+
+Every scene is measured twice, with culling on (--cull) and off (--no-cull), the same
+setting on both sides (refrender culls through an Embree filter function, so the no-cull
+ratio is the fairer per-ray figure); --cull-modes restricts this.
 
 Method, per scene: one warm-up run of each program, then N timed runs of each (default 5,
 --quick 3), alternating (ours, ref, ref, ours, ours, ref, ...), each a whole process with the
@@ -41,7 +47,12 @@ import time
 
 REPO = os.path.abspath(os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", ".."))
 DEFAULT_SIZES = ["1M", "4M", "16M"]
-VARIANTS = ["plain", "glass", "gold"]
+# Generated shapes (gen_mesh --shape) and their scene variants; the knot runs at --sizes,
+# the others at --shape-sizes.
+SHAPES = {"knot": ["plain", "glass", "gold"], "blob": ["plain", "glass"], "terrain": ["plain"],
+          "city": ["plain"], "soup": ["plain"]}
+DEFAULT_SHAPE_SIZES = ["1M"]
+CULL_MODES = ["cull", "no-cull"]  # the flag passed to both programs
 
 OURS_LINE = re.compile(
     r"^(?P<image>.*): (?P<w>\d+)x(?P<h>\d+), (?P<tris>\d+) triangles, (?P<spheres>\d+) spheres, "
@@ -228,13 +239,14 @@ def official_scenes(shared):
     return scenes
 
 
-def large_scenes(sizes, scene_dir):
+def large_scenes(sizes, shape_sizes, scene_dir):
     scenes = []
-    for size in sizes:
-        base = "knot_" + size.lower()
-        for v in VARIANTS:
-            scenes.append({"name": f"{base}_{v}", "path": os.path.join(scene_dir, f"{base}_{v}.json"),
-                           "kind": "large", "size": size, "base": base})
+    for shape, variants in SHAPES.items():
+        for size in (sizes if shape == "knot" else shape_sizes):
+            base = f"{shape}_{size.lower()}"
+            for v in variants:
+                scenes.append({"name": f"{base}_{v}", "path": os.path.join(scene_dir, f"{base}_{v}.json"),
+                               "kind": "large", "size": size, "base": base, "shape": shape})
     return scenes
 
 
@@ -253,14 +265,15 @@ def ensure_gen_mesh(path):
 def ensure_generated(scene, gen_mesh, scene_dir):
     """(Re)generates a large scene's mesh and JSONs when missing or older than gen_mesh."""
     ply = os.path.join(scene_dir, scene["base"] + ".ply")
-    files = [ply] + [os.path.join(scene_dir, f"{scene['base']}_{v}.json") for v in VARIANTS]
+    files = [ply] + [os.path.join(scene_dir, f"{scene['base']}_{v}.json") for v in SHAPES[scene["shape"]]]
     gen_time = os.path.getmtime(gen_mesh)
     if all(os.path.isfile(f) and os.path.getmtime(f) >= gen_time for f in files):
         return True
     os.makedirs(scene_dir, exist_ok=True)
     log(f"generating {scene['base']} ({scene['size']} triangles) ...")
     t0 = time.perf_counter()
-    r = subprocess.run([gen_mesh, "--out-dir", scene_dir, "--name", scene["base"], scene["size"]],
+    r = subprocess.run([gen_mesh, "--shape", scene["shape"], "--out-dir", scene_dir, "--name", scene["base"],
+                        scene["size"]],
                        capture_output=True, text=True)
     if r.returncode != 0:
         loud(f"gen_mesh failed for {scene['base']}: {r.stderr.strip()}")
@@ -397,12 +410,15 @@ def refrender_problem(ref):
 
 # ---------------------------------------------------------------- the benchmark of one scene
 
-def bench_scene(scene, a, ours_bin, ref_bin, warmed, ours_shown):
-    name = scene["name"]
-    ours_cmd = [ours_bin, "-q", "-j", str(a.threads), "-o", "{outdir}", scene["path"]]
-    ours_loud_cmd = [ours_bin, "-j", str(a.threads), "-o", "{outdir}", scene["path"]]
-    ref_cmd = [ref_bin, "--threads", str(a.threads), "--outdir", "{outdir}", scene["path"]] if ref_bin else None
-    res = {"name": name, "kind": scene["kind"], "path": scene["path"],
+def bench_scene(scene, cull, a, ours_bin, ref_bin, warmed, ours_shown):
+    """One scene under one culling setting (cull: "cull" or "no-cull", the flag for both)."""
+    name = scene["name"] + ("" if cull == "cull" else " (no-cull)")  # in messages and notes
+    flag = "--" + cull
+    ours_cmd = [ours_bin, "-q", "-j", str(a.threads), flag, "-o", "{outdir}", scene["path"]]
+    ours_loud_cmd = [ours_bin, "-j", str(a.threads), flag, "-o", "{outdir}", scene["path"]]
+    ref_cmd = ([ref_bin, "--threads", str(a.threads), flag, "--outdir", "{outdir}", scene["path"]]
+               if ref_bin else None)
+    res = {"name": scene["name"], "cull": cull, "kind": scene["kind"], "path": scene["path"],
            "ours_cmd": " ".join([ours_shown] + ours_cmd[1:]).replace("{outdir}", "OUTDIR"),
            "ref_cmd": " ".join(ref_cmd).replace("{outdir}", "OUTDIR") if ref_cmd else None,
            "ours_runs": [], "ref_runs": [], "phase_runs": [], "notes": []}
@@ -521,9 +537,26 @@ def table(header, rows, align):
     return "\n".join([line(header), sep] + [line(r) for r in rows])
 
 
+def label(r):
+    """A result's scene name with its culling setting when that is not the default."""
+    return r["name"] + ("" if r["cull"] == "cull" else " no-cull")
+
+
+def render_ratio(r):
+    """Our render phase over refrender's (medians), or None."""
+    p, rp = r["phases"] or {}, r["ref_phases"] or {}
+    ren, rren = p.get("render"), rp.get("render")
+    return ren / rren if ren is not None and rren else None
+
+
+def fmt_ratio(x):
+    return "n/a" if x is None else f"{x:.2f}"
+
+
 def report(results, meta):
     out = []
     m = meta["machine"]
+    modes = [c for c in CULL_MODES if any(r["cull"] == c for r in results)]
     out.append("# raytracer benchmark")
     out.append("")
     out.append(f"- date: {meta['date']} (took {meta['elapsed'] / 60:.1f} min)")
@@ -532,6 +565,8 @@ def report(results, meta):
                f"{meta['loadavg_end']} at end")
     out.append(f"- threads: {m['threads']} for both; runs: {meta['runs']} timed runs each after one warm-up, "
                f"alternating (heavy scenes, marked *: at most {meta['heavy_runs']})")
+    out.append("- culling: every scene with " + " and with ".join(f"`--{c}`" for c in modes)
+               + " on both sides (rows marked no-cull are the latter)")
     out.append(f"- ours: {meta['raytracer']} (git {meta['git']}, sha256 {meta['raytracer_sha256'][:12]})")
     if meta["refrender_problem"]:
         out.append(f"- **refrender could not run: {meta['refrender_problem']}; our times only**")
@@ -544,7 +579,7 @@ def report(results, meta):
     rows = []
     for r in results:
         p = r["phases"] or {}
-        name = r["name"] + (" *" if r.get("heavy") else "")
+        name = label(r) + (" *" if r.get("heavy") else "")
         ours = fmt_s(r["ours_median"]) if r["ours_ok"] else "FAILED"
         ref = fmt_s(r["ref_median"]) if r["ref_ok"] else ("FAILED" if r["ref_cmd"] else "n/a")
         ratio = "n/a" if r["ratio"] is None else f"{r['ratio']:.2f}" + (" !" if r["ratio"] > 1.5 else "")
@@ -557,38 +592,76 @@ def report(results, meta):
                "own phase split (median of non-quiet runs); MiB is peak RSS (max over runs; readings "
                f"include a floor of {meta['rss_floor'] / 2**20:.1f} MiB, the process launcher's). "
                "`!` marks ours slower than 1.5x refrender; `*` a heavy scene.")
-    out.append("")
 
-    both = [r for r in results if r["ours_median"] is not None and r["ref_median"] is not None]
-    s_ours = sum(r["ours_median"] for r in both)
-    s_ref = sum(r["ref_median"] for r in both)
-    if both:
-        out.append(f"**Total** over the {len(both)} scenes both finished: ours {s_ours:.2f} s, "
-                   f"refrender {s_ref:.2f} s, ratio {s_ours / s_ref:.2f}.")
-    else:
-        s_all = sum(r["ours_median"] for r in results if r["ours_median"] is not None)
-        out.append(f"**Total** (ours only): {s_all:.2f} s.")
-    official = [r for r in both if r["kind"] != "large"]
-    if official and len(official) < len(both):
-        o_ours = sum(r["ours_median"] for r in official)
-        o_ref = sum(r["ref_median"] for r in official)
+    for mode in modes:
+        both = [r for r in results if r["cull"] == mode and r["ours_median"] is not None
+                and r["ref_median"] is not None]
+        mine = [r for r in results if r["cull"] == mode]
         out.append("")
-        out.append(f"**Official scenes** ({len(official)} files): ours {o_ours:.3f} s, refrender {o_ref:.3f} s, "
-                   f"ratio {o_ours / o_ref:.2f}.")
-    slow = [r["name"] for r in both if r["ratio"] > 1.5]
-    out.append("")
-    out.append(f"**Ours slower than 1.5x refrender on {len(slow)} of {len(both)} scenes**"
-               + (": " + ", ".join(slow) if slow else "."))
+        out.append(f"### `--{mode}`")
+        out.append("")
+        s_ours = sum(r["ours_median"] for r in both)
+        s_ref = sum(r["ref_median"] for r in both)
+        if both:
+            out.append(f"**Total** over the {len(both)} scenes both finished: ours {s_ours:.2f} s, "
+                       f"refrender {s_ref:.2f} s, ratio {s_ours / s_ref:.2f}.")
+        else:
+            s_all = sum(r["ours_median"] for r in mine if r["ours_median"] is not None)
+            out.append(f"**Total** (ours only): {s_all:.2f} s.")
+        official = [r for r in both if r["kind"] != "large"]
+        if official and len(official) < len(both):
+            o_ours = sum(r["ours_median"] for r in official)
+            o_ref = sum(r["ref_median"] for r in official)
+            out.append("")
+            out.append(f"**Official scenes** ({len(official)} files): ours {o_ours:.3f} s, refrender {o_ref:.3f} s, "
+                       f"ratio {o_ours / o_ref:.2f}.")
+        slow = [r["name"] for r in both if r["ratio"] > 1.5]
+        out.append("")
+        out.append(f"**Ours slower than 1.5x refrender on {len(slow)} of {len(both)} scenes**"
+                   + (": " + ", ".join(slow) if slow else "."))
+        rr = [(r["name"], render_ratio(r)) for r in mine if render_ratio(r) is not None]
+        if rr:
+            over = [f"{n} {x:.2f}" for n, x in rr if x > 1.0]
+            out.append("")
+            out.append(f"**Render phase at most refrender's on {len(rr) - len(over)} of {len(rr)} scenes**"
+                       + (" (over: " + ", ".join(over) + ")" if over else "."))
+
     failed = [r for r in results if not r["ours_ok"]]
     if failed:
         out.append("")
-        out.append(f"**raytracer failed on {len(failed)} scene(s):**")
+        out.append(f"**raytracer failed on {len(failed)} run(s):**")
         for r in failed:
-            out.append(f"- {r['name']}: {r.get('ours_error', '?')} (`{r['ours_cmd']}`)")
+            out.append(f"- {label(r)}: {r.get('ours_error', '?')} (`{r['ours_cmd']}`)")
     ref_failed = [r for r in results if r["ref_cmd"] and not r["ref_ok"]]
     if ref_failed:
         out.append("")
-        out.append("refrender failed on: " + ", ".join(f"{r['name']} ({r.get('ref_error', '?')})" for r in ref_failed))
+        out.append("refrender failed on: " + ", ".join(f"{label(r)} ({r.get('ref_error', '?')})" for r in ref_failed))
+
+    # Render phase side by side, both culling settings, one row per scene.
+    names = list(dict.fromkeys(r["name"] for r in results))
+    by = {(r["name"], r["cull"]): r for r in results}
+    if names:
+        out.append("")
+        out.append("## Render phase: ours / refrender, both culling settings")
+        out.append("")
+        header = ["scene", "triangles"]
+        for mode in modes:
+            header += [f"ours {mode} s", f"ref {mode} s", f"{mode} ratio"]
+        rows = []
+        for n in names:
+            rs = [by.get((n, mode)) for mode in modes]
+            tris = next(((x["phases"] or {}).get("triangles") for x in rs if x and x["phases"]), None)
+            row = [n, tris or "?"]
+            for x in rs:
+                p, rp = ((x or {}).get("phases") or {}), ((x or {}).get("ref_phases") or {})
+                rat = render_ratio(x) if x else None
+                row += [fmt_s(p.get("render")), fmt_s(rp.get("render")),
+                        fmt_ratio(rat) + (" >" if rat is not None and rat > 1.0 else "")]
+            rows.append(row)
+        out.append(table(header, rows, ["l"] + ["r"] * (len(header) - 1)))
+        out.append("")
+        out.append("Render: the render phase alone, summed over a scene's images (ours: median of our phase "
+                   "split; refrender: median of its own render= figures). `>` marks ours slower than refrender.")
 
     large = [r for r in results if r["kind"] == "large"]
     if large:
@@ -605,10 +678,9 @@ def report(results, meta):
             lb = p["load"] + p["bvh"] if p else None
             rlb = rp["parse"] + rp["bvh"] if rp else None
             bpt = lambda rss: "n/a" if rss is None or not tris else f"{rss / tris:.0f}"
-            ren, rren = p.get("render"), rp.get("render")
-            rratio = f"{ren / rren:.2f}" if ren is not None and rren else "n/a"
-            rows.append([r["name"], tris or "?", fmt_s(lb, 2), fmt_s(rlb, 2), fmt_s(ren), fmt_s(rren), rratio,
-                         bpt(r["ours_maxrss"]), bpt(r["ref_maxrss"])])
+            rows.append([label(r), tris or "?", fmt_s(lb, 2), fmt_s(rlb, 2), fmt_s(p.get("render")),
+                         fmt_s(rp.get("render")), fmt_ratio(render_ratio(r)), bpt(r["ours_maxrss"]),
+                         bpt(r["ref_maxrss"])])
         out.append(table(header, rows, ["l", "r", "r", "r", "r", "r", "r", "r", "r"]))
         out.append("")
         out.append("Render: the render phase alone (ours: median of our phase split; refrender: median of "
@@ -617,11 +689,11 @@ def report(results, meta):
     notes = {}
     for r in results:
         for n in r["notes"]:
-            notes.setdefault(n, []).append(r["name"])
+            notes.setdefault(n, []).append(label(r))
     if notes:
         out.append("")
-        for n, names in notes.items():
-            out.append(f"- {n}: {', '.join(names)}")
+        for n, names_ in notes.items():
+            out.append(f"- {n}: {', '.join(names_)}")
     return "\n".join(out) + "\n"
 
 
@@ -636,7 +708,11 @@ def main():
     ap.add_argument("--quick", action="store_true", help="skip the 16M scenes; 3 runs unless --runs is given")
     ap.add_argument("--scenes", default=None,
                     help="comma-separated patterns (fnmatch or substring) of scene names, e.g. 'bunny,knot_1m*'")
-    ap.add_argument("--sizes", default=",".join(DEFAULT_SIZES), help="large mesh sizes (default 1M,4M,16M)")
+    ap.add_argument("--sizes", default=",".join(DEFAULT_SIZES), help="knot mesh sizes (default 1M,4M,16M)")
+    ap.add_argument("--shape-sizes", default=",".join(DEFAULT_SHAPE_SIZES),
+                    help="sizes of the other generated shapes, blob/terrain/city/soup (default 1M; '' for none)")
+    ap.add_argument("--cull-modes", default=",".join(CULL_MODES),
+                    help="culling settings to measure every scene with, both programs (default cull,no-cull)")
     ap.add_argument("--raytracer", default=os.path.join(REPO, "raytracer"))
     ap.add_argument("--refrender", default=None, help="default: $RT_SHARED_DIR/tools/refrender or ../shared/tools/refrender")
     ap.add_argument("--gen-mesh", default=os.path.join(REPO, "build", "bench", "gen_mesh"))
@@ -654,19 +730,24 @@ def main():
     if a.runs < 1 or a.threads < 1 or a.heavy_runs < 1:
         ap.error("--runs, --threads and --heavy-runs must be at least 1")
     sizes = [s.strip() for s in a.sizes.split(",") if s.strip()]
+    shape_sizes = [s.strip() for s in a.shape_sizes.split(",") if s.strip()]
+    cull_modes = [c.strip() for c in a.cull_modes.split(",") if c.strip()]
+    if not cull_modes or any(c not in CULL_MODES for c in cull_modes):
+        ap.error("--cull-modes takes cull, no-cull or both")
     if a.quick:
         sizes = [s for s in sizes if s.upper() != "16M"]
 
     shared = os.environ.get("RT_SHARED_DIR") or os.path.join(os.path.dirname(REPO), "shared")
     ref = a.refrender or os.path.join(shared, "tools", "refrender")
     scene_dir = os.path.join(a.out, "scenes")
-    scenes = official_scenes(shared) + large_scenes(sizes, scene_dir)
+    scenes = official_scenes(shared) + large_scenes(sizes, shape_sizes, scene_dir)
     if a.scenes:
         pats = [p.strip() for p in a.scenes.split(",") if p.strip()]
         scenes = [s for s in scenes if any(fnmatch.fnmatch(s["name"], p) or p in s["name"] for p in pats)]
     if a.list:
         for s in scenes:
             print(s["name"], s["path"])
+        print(f"(each with --{' and --'.join(cull_modes)})")
         return 0
     if not scenes:
         log("no scenes selected")
@@ -699,6 +780,7 @@ def main():
         scenes = [s for s in scenes if s.get("base") not in bad]
 
     meta = {
+        "cull_modes": cull_modes,
         "date": datetime.datetime.now().astimezone().isoformat(timespec="seconds"),
         "machine": machine_info(a.threads),
         "runs": a.runs,
@@ -713,20 +795,24 @@ def main():
         "loadavg_start": loadavg(),
         "rss_floor": floor,
     }
-    log(f"bench: {len(scenes)} scenes, {a.runs} runs each, {a.threads} threads, "
+    log(f"bench: {len(scenes)} scenes x {len(cull_modes)} culling settings, {a.runs} runs each, {a.threads} threads, "
         f"{meta['machine']['cpu']}; load average {meta['loadavg_start']}")
     t_start = time.perf_counter()
     results, warmed = [], set()
     try:
-        for i, s in enumerate(scenes, 1):
+        # Both culling settings of a scene back to back: the second finds its meshes in the page cache.
+        jobs = [(s, c) for s in scenes for c in cull_modes]
+        for i, (s, cull) in enumerate(jobs, 1):
             t0 = time.perf_counter()
-            r, cheap, meshes = bench_scene(s, a, ours_bin, ref_bin, warmed, meta["raytracer"])
+            r, cheap, meshes = bench_scene(s, cull, a, ours_bin, ref_bin, warmed, meta["raytracer"])
             if not cheap:
                 warmed |= meshes
             results.append(r)
             ratio = "" if r["ratio"] is None else f"  ratio {r['ratio']:.2f}"
-            log(f"[{i}/{len(scenes)}] {s['name']}: ours {fmt_s(r['ours_median'])} s"
-                f"{'' if r['ours_ok'] else ' FAILED'}, ref {fmt_s(r['ref_median'])} s{ratio}"
+            rr = render_ratio(r)
+            rr = "" if rr is None else f", render ratio {rr:.2f}"
+            log(f"[{i}/{len(jobs)}] {label(r)}: ours {fmt_s(r['ours_median'])} s"
+                f"{'' if r['ours_ok'] else ' FAILED'}, ref {fmt_s(r['ref_median'])} s{ratio}{rr}"
                 f"{' (heavy)' if r['heavy'] else ''} [{time.perf_counter() - t0:.0f}s]")
     except KeyboardInterrupt:
         log("interrupted: reporting the scenes done so far")
