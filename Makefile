@@ -19,12 +19,10 @@ override CPPFLAGS += -Iinclude
 override LDLIBS   += -lpthread
 
 # Headers packaged in the submission tarball (make dist) live in third_party/;
-# on a Debian machine they come from nlohmann-json3-dev and libstb-dev.
+# on a Debian machine they come from nlohmann-json3-dev and libstb-dev. The stb code is
+# compiled in (src/image/stb_impl.cpp, see mk/png.mk), never linked from libstb.
 ifneq ($(wildcard third_party/stb/stb_image_write.h),)
   override CPPFLAGS += -Ithird_party
-  STB_IMPL := src/image/stb_impl.cpp
-else
-  override LDLIBS += -lstb
 endif
 
 ifeq ($(PRECISION),float)
@@ -39,7 +37,7 @@ ifneq ($(MARCH),native)
 endif
 
 # Every src/**/*.cpp is library code except program entry points (main.cpp, *_main.cpp).
-LIB_SRC  := $(filter-out src/main.cpp %_main.cpp src/image/stb_impl.cpp,$(shell find src -name '*.cpp' | sort)) $(STB_IMPL)
+LIB_SRC  := $(filter-out src/main.cpp %_main.cpp,$(shell find src -name '*.cpp' | sort))
 LIB_OBJ  := $(LIB_SRC:%.cpp=$(BUILD)/%.o)
 # The test binary is built from tests/*.cpp only; subfolders (fuzz targets, benchmarks) have their own rules.
 TEST_SRC := $(sort $(wildcard tests/*.cpp))

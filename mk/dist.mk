@@ -7,8 +7,10 @@
 # libcli11-dev, stb/stb_image_write.h and stb/stb_image.h from libstb-dev) with their
 # copyright files.
 # The Makefile sees third_party/stb/stb_image_write.h and compiles with -Ithird_party
-# and src/image/stb_impl.cpp instead of linking libstb; mk/convert.mk leaves out XML
-# scenes and ./rtconvert where pugixml and tinyobjloader are missing.
+# (src/image/stb_impl.cpp builds the stb code there as everywhere); libdeflate is not
+# copied: where it is missing, mk/png.mk falls back to stb's own PNG compressor (same
+# pixels, larger files, slower writes), and mk/convert.mk leaves out XML scenes and
+# ./rtconvert where pugixml and tinyobjloader are missing.
 # The repository's own third_party/ is never filled (it is gitignored).
 #
 # make dist-check: builds the tarball in a fresh folder with the packaged headers and

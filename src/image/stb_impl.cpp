@@ -1,7 +1,60 @@
-// The stb implementations, for the submission tarball (make dist) only: there the
-// headers come from third_party/ (copied from Debian's libstb-dev) and no libstb is
-// linked, so this file compiles them in. The Makefile builds it only when
-// third_party/stb/stb_image_write.h exists; on Debian, libstb provides the code.
+// The stb implementations (stb_image_write for our PNGs, stb_image for the tests and
+// tools that read them), compiled here from the headers of Debian's libstb-dev (or the
+// tarball's third_party/stb/, make dist) instead of linking libstb: this way the PNG
+// writer's zlib stream can come from libdeflate through stb's STBIW_ZLIB_COMPRESS hook
+// (stb_image_write.h, "BUILDING"). Without libdeflate (RT_NO_LIBDEFLATE, mk/png.mk)
+// stb's own compressor is used. Either way the pixels are the same, PNG being lossless.
+#ifndef RT_NO_LIBDEFLATE
+#include <libdeflate.h>
+
+#include <cstdlib>
+
+namespace {
+// libdeflate's compressor of the level asked last on this thread, kept for the next
+// image: allocating one (its hash tables) per image cost about a tenth of the write.
+class CachedCompressor {
+public:
+    CachedCompressor() = default;
+    CachedCompressor(const CachedCompressor&) = delete;
+    CachedCompressor& operator=(const CachedCompressor&) = delete;
+    ~CachedCompressor() { libdeflate_free_compressor(c_); }
+    libdeflate_compressor* get(int level) {
+        if (!c_ || level != level_) {
+            libdeflate_free_compressor(c_);
+            c_ = libdeflate_alloc_compressor(level);
+            level_ = level;
+        }
+        return c_;
+    }
+
+private:
+    libdeflate_compressor* c_ = nullptr;
+    int level_ = 0;
+};
+
+// The hook's contract (stb_image_write.h, "BUILDING"): a zlib stream of
+// data[0..data_len) in memory from malloc (stb frees it), its length in *out_len;
+// nullptr on failure. `quality` is stbi_write_png_compression_level, read as
+// libdeflate's level (0..12).
+unsigned char* rt_zlib_compress(unsigned char* data, int data_len, int* out_len, int quality) {
+    thread_local CachedCompressor cache;
+    libdeflate_compressor* c = cache.get(quality);
+    if (!c) return nullptr;
+    const size_t bound = libdeflate_zlib_compress_bound(c, static_cast<size_t>(data_len));
+    auto* out = static_cast<unsigned char*>(std::malloc(bound));
+    const size_t n = out ? libdeflate_zlib_compress(c, data, static_cast<size_t>(data_len), out, bound) : 0;
+    if (n == 0) {  // no memory, or the bound was too small (never, by libdeflate's contract)
+        std::free(out);
+        return nullptr;
+    }
+    *out_len = static_cast<int>(n);
+    return out;
+}
+}  // namespace
+
+#define STBIW_ZLIB_COMPRESS rt_zlib_compress
+#endif
+
 #if defined(__GNUC__)
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wall"
