@@ -86,6 +86,20 @@ test: raytracer $(BUILD)/rt_tests
 clean:
 	rm -rf build raytracer
 
+# $(eval $(call optional_library,VAR,HEADER,LDLIBS,MACRO)): an optional library. VAR is 1 when
+# the compiler finds <HEADER> (asked once; `make VAR=` builds without it), and then LDLIBS are
+# linked; otherwise the code is compiled with -DMACRO and does without (mk/convert.mk, mk/png.mk).
+define optional_library
+ifeq ($$(origin $(1)),undefined)
+  $(1) := $$(shell printf '\043include <$(2)>\n' | $$(CXX) -x c++ -E -o /dev/null - 2>/dev/null && echo 1)
+endif
+ifeq ($$($(1)),1)
+  override LDLIBS += $(3)
+else
+  override CPPFLAGS += -D$(4)
+endif
+endef
+
 # Further targets (benchmarks, sanitizers, fuzzing, converters) live in mk/*.mk.
 -include $(sort $(wildcard mk/*.mk))
 

@@ -7,22 +7,8 @@
 # `make dist` on a machine with only g++), the library is built without it (RT_NO_XML:
 # XML scenes are refused with one error line; RT_NO_OBJ: OBJ import likewise) and
 # ./rtconvert is not built. `make RT_HAVE_PUGIXML= RT_HAVE_TINYOBJ=` builds that way here.
-ifeq ($(origin RT_HAVE_PUGIXML),undefined)
-  RT_HAVE_PUGIXML := $(shell printf '\043include <pugixml.hpp>\n' | $(CXX) -x c++ -E -o /dev/null - 2>/dev/null && echo 1)
-endif
-ifeq ($(origin RT_HAVE_TINYOBJ),undefined)
-  RT_HAVE_TINYOBJ := $(shell printf '\043include <tiny_obj_loader.h>\n' | $(CXX) -x c++ -E -o /dev/null - 2>/dev/null && echo 1)
-endif
-ifeq ($(RT_HAVE_PUGIXML),1)
-  override LDLIBS += -lpugixml
-else
-  override CPPFLAGS += -DRT_NO_XML
-endif
-ifeq ($(RT_HAVE_TINYOBJ),1)
-  override LDLIBS += -ltinyobjloader_double
-else
-  override CPPFLAGS += -DRT_NO_OBJ
-endif
+$(eval $(call optional_library,RT_HAVE_PUGIXML,pugixml.hpp,-lpugixml,RT_NO_XML))
+$(eval $(call optional_library,RT_HAVE_TINYOBJ,tiny_obj_loader.h,-ltinyobjloader_double,RT_NO_OBJ))
 
 .PHONY: clean-rtconvert
 ifeq ($(RT_HAVE_PUGIXML)$(RT_HAVE_TINYOBJ),11)
