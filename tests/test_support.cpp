@@ -18,6 +18,8 @@
 
 #include <stb/stb_image.h>
 
+#include "rt/image_diff.h"
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -167,36 +169,12 @@ bool load_png(const std::string& path, rt::Image& out) {
 }
 
 ImageDiff compare(const rt::Image& a, const rt::Image& b) {
+    const rt::ImageComparison c = rt::compare_images(a, b, 1);
     ImageDiff d;
-    const size_t n = size_t(a.width) * size_t(a.height) * 3;
-    if (a.width != b.width || a.height != b.height || a.rgb.size() != n || b.rgb.size() != n) {
-        d.max_diff = 256;
-        d.mean_diff = 255;
-        d.pct_over_1 = 100;
-        d.psnr = 0;
-        return d;
-    }
-    if (n == 0) {
-        d.psnr = std::numeric_limits<double>::infinity();
-        return d;
-    }
-    double sum = 0, sum_sq = 0;
-    size_t pixels_over = 0;
-    for (size_t p = 0; p < n; p += 3) {
-        bool over = false;
-        for (size_t c = 0; c < 3; ++c) {
-            int diff = std::abs(int(a.rgb[p + c]) - int(b.rgb[p + c]));
-            d.max_diff = std::max(d.max_diff, diff);
-            sum += diff;
-            sum_sq += double(diff) * diff;
-            if (diff > 1) over = true;
-        }
-        if (over) ++pixels_over;
-    }
-    d.mean_diff = sum / double(n);
-    d.pct_over_1 = 100.0 * double(pixels_over) / double(n / 3);
-    const double mse = sum_sq / double(n);
-    d.psnr = mse == 0 ? std::numeric_limits<double>::infinity() : 10.0 * std::log10(255.0 * 255.0 / mse);
+    d.max_diff = c.max_diff;
+    d.mean_diff = c.mean_diff;
+    d.pct_over_1 = c.pct_over;
+    d.psnr = c.psnr;
     return d;
 }
 

@@ -65,8 +65,9 @@ struct ImageDiff {
     double psnr = 0;        // over all channels, dB; +inf when identical
 };
 
-// Per-channel comparison of two images of the same size. Images of different sizes
-// compare as totally different: max_diff 256, mean_diff 255, pct_over_1 100, psnr 0.
+// Per-channel comparison of two images of the same size: rt::compare_images at the
+// tolerance of 1 level (rt/image_diff.h, the measure ./rtdiff prints). Images of different
+// sizes compare as totally different: max_diff 256, mean_diff 255, pct_over_1 100, psnr 0.
 ImageDiff compare(const rt::Image& a, const rt::Image& b);
 
 // Writes `content` to `path` (truncating). Throws std::runtime_error on failure.

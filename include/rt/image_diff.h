@@ -1,0 +1,43 @@
+// Comparing two 8-bit RGB images: the figures ./rtdiff prints and the conformance tests
+// assert (issue 15), so both measure alike; and a heatmap of where they differ.
+#pragma once
+#include <cstddef>
+#include <string>
+
+#include "rt/image.h"
+
+namespace rt {
+
+// The comparison of image A with image B at a tolerance (in levels).
+struct ImageComparison {
+    bool same_size = true;     // false: the figures below say "totally different"
+    int width = 0, height = 0;  // A's size
+    int tolerance = 1;
+    int max_diff = 0;           // largest absolute difference of any channel, in levels (256: sizes differ)
+    double mean_diff = 0;       // mean absolute difference over all channel values
+    size_t pixels = 0;          // width * height
+    size_t pixels_over = 0;     // pixels with some channel off by more than `tolerance`
+    double pct_over = 0;        // pixels_over as a percentage of pixels
+    double psnr = 0;            // over all channels, dB; +inf when identical
+    // The smallest rectangle holding every pixel counted in pixels_over, inclusive
+    // bounds (column x from the left, row y from the top); empty when none is.
+    int box_x0 = 0, box_y0 = 0, box_x1 = -1, box_y1 = -1;
+    bool box_empty() const { return box_x1 < box_x0; }
+};
+
+// Per-channel comparison of `a` and `b`. Images of different sizes (or malformed ones,
+// rgb not width * height * 3 bytes) compare as totally different: same_size false,
+// max_diff 256, mean_diff 255, pct_over 100, psnr 0, box the whole of `a`.
+ImageComparison compare_images(const Image& a, const Image& b, int tolerance = 1);
+
+// An image of a's size showing where and how much `a` and `b` differ, per pixel by the
+// largest channel difference d: equal pixels are a's luminance dimmed to a quarter (to
+// show where one is), d within the tolerance dark blue, d above it yellow (just over)
+// to red (64 levels or more over). Requires same-size images (compare_images().same_size).
+Image diff_heatmap(const Image& a, const Image& b, int tolerance = 1);
+
+// Reads a PNG or PPM (anything stb_image reads) as 8-bit RGB. Throws rt::InputError
+// "<path>: <what>" when it cannot (no such file, a folder, not an image).
+Image read_image(const std::string& path);
+
+}  // namespace rt

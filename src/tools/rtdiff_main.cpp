@@ -1,0 +1,206 @@
+// rtdiff: compares two images, or every image of the same name in two folders, with
+// the measure the conformance tests use (rt/image_diff.h; issue 15).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <new>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "rt/cli.h"
+#include "rt/error.h"
+#include "rt/image.h"
+#include "rt/image_diff.h"
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const rt::cli::Program kProgram{
+    "rtdiff", "rtdiff 1.0", "usage: rtdiff [--tolerance N] [--heatmap OUT] [--fail-above P] A B",
+    "Compares image A with image B (PNG or PPM), or every image of the same name in folders A\n"
+    "and B: size, largest and mean channel difference, the pixels with some channel off by\n"
+    "more than the tolerance (count, share and bounding box) and PSNR.\n",
+    "exit status: 0 compared (and within --fail-above), 1 bad input or over --fail-above, 2 usage error"};
+
+struct Options {
+    int tolerance = 1;
+    std::string heatmap;                 // two images: a PNG; two folders: a folder
+    std::optional<double> fail_above;    // percent of pixels
+};
+
+std::string psnr_text(double psnr) {
+    if (std::isinf(psnr)) return "inf";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.2f dB", psnr);
+    return buf;
+}
+
+std::string box_text(const rt::ImageComparison& c) {
+    if (c.box_empty()) return "none";
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "x %d..%d y %d..%d", c.box_x0, c.box_x1, c.box_y0, c.box_y1);
+    return buf;
+}
+
+bool over_limit(const rt::ImageComparison& c, const Options& o) { return o.fail_above && c.pct_over > *o.fail_above; }
+
+// One pair of images; exit status 0 or 1.
+int compare_files(const std::string& a_path, const std::string& b_path, const Options& o) {
+    const rt::Image a = rt::read_image(a_path);
+    const rt::Image b = rt::read_image(b_path);
+    const rt::ImageComparison c = rt::compare_images(a, b, o.tolerance);
+    if (!c.same_size)
+        throw rt::InputError(b_path + ": " + std::to_string(b.width) + "x" + std::to_string(b.height) + ", but " +
+                             a_path + " is " + std::to_string(a.width) + "x" + std::to_string(a.height));
+    std::printf("%s vs %s: same size, %dx%d\n", a_path.c_str(), b_path.c_str(), c.width, c.height);
+    std::printf("max %d, mean %.4f, %zu of %zu pixels (%.4f%%) off by more than %d, PSNR %s, box %s\n", c.max_diff,
+                c.mean_diff, c.pixels_over, c.pixels, c.pct_over, c.tolerance, psnr_text(c.psnr).c_str(),
+                box_text(c).c_str());
+    if (!o.heatmap.empty()) rt::write_png(rt::diff_heatmap(a, b, o.tolerance), o.heatmap);
+    if (over_limit(c, o)) {
+        std::printf("over --fail-above %g%%\n", *o.fail_above);
+        return 1;
+    }
+    return 0;
+}
+
+bool is_image_name(const fs::path& p) {
+    const rt::ImageFormat f = rt::image_format_of(p.string());
+    return f == rt::ImageFormat::Png || f == rt::ImageFormat::Ppm;
+}
+
+// The image file names directly in `dir`. Throws rt::InputError when it cannot be read.
+std::set<std::string> image_names(const std::string& dir) {
+    std::set<std::string> names;
+    std::error_code ec;
+    fs::directory_iterator it(dir, ec);
+    for (; !ec && it != fs::directory_iterator(); it.increment(ec)) {
+        std::error_code ec2;
+        if (it->is_regular_file(ec2) && is_image_name(it->path())) names.insert(it->path().filename().string());
+    }
+    if (ec) throw rt::InputError(dir + ": cannot read the folder: " + ec.message());
+    return names;
+}
+
+struct Row {
+    std::string name;
+    rt::ImageComparison c;
+    std::string error;  // not empty: this pair could not be compared
+};
+
+// Two folders; exit status 0 or 1.
+int compare_dirs(const std::string& a_dir, const std::string& b_dir, const Options& o) {
+    const std::set<std::string> a_names = image_names(a_dir), b_names = image_names(b_dir);
+    if (!o.heatmap.empty()) {
+        std::error_code ec;
+        fs::create_directories(o.heatmap, ec);
+        if (ec) throw rt::InputError(o.heatmap + ": cannot create the folder: " + ec.message());
+    }
+    std::vector<Row> rows;
+    std::vector<std::string> only_a, only_b;
+    for (const std::string& n : a_names)
+        if (!b_names.count(n)) only_a.push_back(n);
+    for (const std::string& n : b_names)
+        if (!a_names.count(n)) only_b.push_back(n);
+    int status = 0;
+    for (const std::string& n : a_names) {
+        if (!b_names.count(n)) continue;
+        Row r;
+        r.name = n;
+        const std::string a_path = (fs::path(a_dir) / n).string(), b_path = (fs::path(b_dir) / n).string();
+        try {
+            const rt::Image a = rt::read_image(a_path), b = rt::read_image(b_path);
+            r.c = rt::compare_images(a, b, o.tolerance);
+            if (!r.c.same_size)
+                r.error = "sizes differ: " + std::to_string(a.width) + "x" + std::to_string(a.height) + " vs " +
+                          std::to_string(b.width) + "x" + std::to_string(b.height);
+            else if (!o.heatmap.empty())
+                rt::write_png(rt::diff_heatmap(a, b, o.tolerance),
+                              (fs::path(o.heatmap) / fs::path(n).stem()).string() + ".png");
+        } catch (const rt::InputError& e) {
+            r.error = e.what();
+        }
+        if (!r.error.empty()) status = 1;
+        rows.push_back(r);
+    }
+    // Worst first: failures, then by share of pixels off, then by largest difference.
+    std::stable_sort(rows.begin(), rows.end(), [](const Row& x, const Row& y) {
+        if (x.error.empty() != y.error.empty()) return !x.error.empty();
+        if (x.c.pct_over != y.c.pct_over) return x.c.pct_over > y.c.pct_over;
+        return x.c.max_diff > y.c.max_diff;
+    });
+    size_t width = 5;
+    for (const Row& r : rows) width = std::max(width, r.name.size());
+    const int w = int(width);
+    std::printf("%-*s  %9s  %4s  %8s  %10s  %9s  %s\n", w, "image", "size", "max", "mean", "% off", "PSNR", "box");
+    size_t over = 0;
+    for (const Row& r : rows) {
+        if (!r.error.empty()) {
+            std::printf("%-*s  %s\n", w, r.name.c_str(), r.error.c_str());
+            continue;
+        }
+        const std::string size = std::to_string(r.c.width) + "x" + std::to_string(r.c.height);
+        const bool bad = over_limit(r.c, o);
+        if (bad) ++over;
+        std::printf("%-*s  %9s  %4d  %8.4f  %10.4f  %9s  %s%s\n", w, r.name.c_str(), size.c_str(), r.c.max_diff,
+                    r.c.mean_diff, r.c.pct_over, psnr_text(r.c.psnr).c_str(), box_text(r.c).c_str(),
+                    bad ? "  OVER" : "");
+    }
+    for (const std::string& n : only_a) std::printf("only in %s: %s\n", a_dir.c_str(), n.c_str());
+    for (const std::string& n : only_b) std::printf("only in %s: %s\n", b_dir.c_str(), n.c_str());
+    std::printf("%zu compared, %zu only in %s, %zu only in %s", rows.size(), only_a.size(), a_dir.c_str(),
+                only_b.size(), b_dir.c_str());
+    if (o.fail_above) std::printf(", %zu over --fail-above %g%%", over, *o.fail_above);
+    std::printf("\n");
+    if (over > 0) status = 1;
+    return status;
+}
+
+bool is_dir(const std::string& p) {
+    std::error_code ec;
+    return fs::is_directory(p, ec);
+}
+
+bool percent(double v) { return v >= 0 && v <= 100; }
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    namespace cli = rt::cli;
+    Options o;
+    std::vector<std::string> files;
+    CLI::App app;
+    cli::setup(app, kProgram);
+    cli::add_whole(app, "--tolerance", "N", "a pixel is off when some channel differs by more than N levels (default 1)",
+                   o.tolerance, 0, 255);
+    cli::add_text(app, "--heatmap", "OUT",
+                  "write where and how much the images differ as a PNG (two folders: a folder of them)", o.heatmap,
+                  "a file name");
+    cli::add_value(app, "--fail-above", "P", "exit status 1 when more than P% of the pixels are off",
+                   [&o](const std::string& v) { o.fail_above = cli::number("--fail-above", v, "a percentage from 0 to 100", percent); });
+    app.add_option("files", files);
+    app.final_callback([&files] {
+        if (files.size() != 2) cli::usage_error(files.size() < 2 ? "needs two images or two folders" : "too many files");
+    });
+    if (const auto status = cli::parse(app, kProgram, argc, argv)) return *status;
+
+    try {
+        const bool a_dir = is_dir(files[0]), b_dir = is_dir(files[1]);
+        if (a_dir && b_dir) return compare_dirs(files[0], files[1], o);
+        if (a_dir != b_dir)
+            throw rt::InputError((a_dir ? files[1] : files[0]) + ": not a folder, but " + (a_dir ? files[0] : files[1]) +
+                                 " is one");
+        return compare_files(files[0], files[1], o);
+    } catch (const rt::InputError& e) {
+        std::fprintf(stderr, "rtdiff: %s\n", e.what());
+    } catch (const std::bad_alloc&) {
+        std::fprintf(stderr, "rtdiff: out of memory\n");
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "rtdiff: %s\n", e.what());
+    }
+    return 1;
+}
