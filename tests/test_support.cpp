@@ -85,6 +85,8 @@ RunResult run_raytracer(const std::vector<std::string>& args, const std::string&
 
 std::string rtconvert_path() { return g_start_dir + "/rtconvert"; }
 
+std::string rtdiff_path() { return g_start_dir + "/rtdiff"; }
+
 RunResult run_program(const std::string& exe, const std::vector<std::string>& args, const std::string& cwd,
                       unsigned timeout_seconds) {
     RunResult result;

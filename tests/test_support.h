@@ -54,6 +54,7 @@ std::string repo_file(const std::string& relative);
 RunResult run_program(const std::string& exe, const std::vector<std::string>& args, const std::string& cwd = "",
                       unsigned timeout_seconds = 120);
 std::string rtconvert_path();
+std::string rtdiff_path();  // the repo's ./rtdiff
 
 // Reads a PNG (any channel count) as 8-bit RGB. False when it cannot be read.
 bool load_png(const std::string& path, rt::Image& out);

@@ -10,15 +10,15 @@ namespace rt {
 
 // The comparison of image A with image B at a tolerance (in levels).
 struct ImageComparison {
-    bool same_size = true;     // false: the figures below say "totally different"
+    bool same_size = true;      // false: the figures below say "totally different"
     int width = 0, height = 0;  // A's size
     int tolerance = 1;
-    int max_diff = 0;           // largest absolute difference of any channel, in levels (256: sizes differ)
-    double mean_diff = 0;       // mean absolute difference over all channel values
-    size_t pixels = 0;          // width * height
-    size_t pixels_over = 0;     // pixels with some channel off by more than `tolerance`
-    double pct_over = 0;        // pixels_over as a percentage of pixels
-    double psnr = 0;            // over all channels, dB; +inf when identical
+    int max_diff = 0;        // largest absolute difference of any channel, in levels (256: sizes differ)
+    double mean_diff = 0;    // mean absolute difference over all channel values
+    size_t pixels = 0;       // width * height
+    size_t pixels_over = 0;  // pixels with some channel off by more than `tolerance`
+    double pct_over = 0;     // pixels_over as a percentage of pixels
+    double psnr = 0;         // over all channels, dB; +inf when identical
     // The smallest rectangle holding every pixel counted in pixels_over, inclusive
     // bounds (column x from the left, row y from the top); empty when none is.
     int box_x0 = 0, box_y0 = 0, box_x1 = -1, box_y1 = -1;

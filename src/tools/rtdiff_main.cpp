@@ -28,8 +28,8 @@ const rt::cli::Program kProgram{
 
 struct Options {
     int tolerance = 1;
-    std::string heatmap;                 // two images: a PNG; two folders: a folder
-    std::optional<double> fail_above;    // percent of pixels
+    std::string heatmap;               // two images: a PNG; two folders: a folder
+    std::optional<double> fail_above;  // percent of pixels
 };
 
 std::string psnr_text(double psnr) {
@@ -175,16 +175,19 @@ int main(int argc, char** argv) {
     std::vector<std::string> files;
     CLI::App app;
     cli::setup(app, kProgram);
-    cli::add_whole(app, "--tolerance", "N", "a pixel is off when some channel differs by more than N levels (default 1)",
-                   o.tolerance, 0, 255);
+    cli::add_whole(app, "--tolerance", "N",
+                   "a pixel is off when some channel differs by more than N levels (default 1)", o.tolerance, 0, 255);
     cli::add_text(app, "--heatmap", "OUT",
                   "write where and how much the images differ as a PNG (two folders: a folder of them)", o.heatmap,
                   "a file name");
     cli::add_value(app, "--fail-above", "P", "exit status 1 when more than P% of the pixels are off",
-                   [&o](const std::string& v) { o.fail_above = cli::number("--fail-above", v, "a percentage from 0 to 100", percent); });
+                   [&o](const std::string& v) {
+                       o.fail_above = cli::number("--fail-above", v, "a percentage from 0 to 100", percent);
+                   });
     app.add_option("files", files);
     app.final_callback([&files] {
-        if (files.size() != 2) cli::usage_error(files.size() < 2 ? "needs two images or two folders" : "too many files");
+        if (files.size() != 2)
+            cli::usage_error(files.size() < 2 ? "needs two images or two folders" : "too many files");
     });
     if (const auto status = cli::parse(app, kProgram, argc, argv)) return *status;
 
@@ -192,8 +195,8 @@ int main(int argc, char** argv) {
         const bool a_dir = is_dir(files[0]), b_dir = is_dir(files[1]);
         if (a_dir && b_dir) return compare_dirs(files[0], files[1], o);
         if (a_dir != b_dir)
-            throw rt::InputError((a_dir ? files[1] : files[0]) + ": not a folder, but " + (a_dir ? files[0] : files[1]) +
-                                 " is one");
+            throw rt::InputError((a_dir ? files[1] : files[0]) + ": not a folder, but " +
+                                 (a_dir ? files[0] : files[1]) + " is one");
         return compare_files(files[0], files[1], o);
     } catch (const rt::InputError& e) {
         std::fprintf(stderr, "rtdiff: %s\n", e.what());

@@ -1,0 +1,270 @@
+// The image comparison of rt/image_diff.h on hand-made images with known differences,
+// and ./rtdiff on them: figures, exit statuses, --fail-above, folders, bad input (issue 15).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "rt/error.h"
+#include "rt/image.h"
+#include "rt/image_diff.h"
+#include "test_support.h"
+
+namespace {
+
+rt::Image gradient(int w, int h) {
+    rt::Image img;
+    img.width = w;
+    img.height = h;
+    img.rgb.resize(size_t(w) * size_t(h) * 3);
+    for (size_t i = 0; i < img.rgb.size(); ++i) img.rgb[i] = uint8_t(40 + i % 150);
+    return img;
+}
+
+uint8_t& at(rt::Image& img, int x, int y, int c) { return img.rgb[(size_t(y) * size_t(img.width) + size_t(x)) * 3 + size_t(c)]; }
+
+uint8_t px(const rt::Image& img, int x, int y, int c) {
+    return img.rgb[(size_t(y) * size_t(img.width) + size_t(x)) * 3 + size_t(c)];
+}
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+}  // namespace
+
+TEST(ImageDiff, IdenticalImagesDifferNowhere) {
+    const rt::Image a = gradient(7, 5);
+    const rt::ImageComparison c = rt::compare_images(a, a);
+    EXPECT_TRUE(c.same_size);
+    EXPECT_EQ(c.max_diff, 0);
+    EXPECT_EQ(c.mean_diff, 0);
+    EXPECT_EQ(c.pixels, 35u);
+    EXPECT_EQ(c.pixels_over, 0u);
+    EXPECT_EQ(c.pct_over, 0);
+    EXPECT_TRUE(std::isinf(c.psnr) && c.psnr > 0);
+    EXPECT_TRUE(c.box_empty());
+}
+
+TEST(ImageDiff, OnePixelOffByTwo) {
+    const rt::Image a = gradient(7, 5);
+    rt::Image b = a;
+    at(b, 4, 2, 1) += 2;
+    const rt::ImageComparison c = rt::compare_images(a, b);
+    EXPECT_EQ(c.max_diff, 2);
+    EXPECT_EQ(c.pixels_over, 1u);
+    EXPECT_DOUBLE_EQ(c.pct_over, 100.0 / 35);
+    EXPECT_DOUBLE_EQ(c.mean_diff, 2.0 / (35 * 3));
+    EXPECT_DOUBLE_EQ(c.psnr, 10 * std::log10(255.0 * 255.0 / (4.0 / (35 * 3))));
+    EXPECT_FALSE(c.box_empty());
+    EXPECT_EQ(c.box_x0, 4);
+    EXPECT_EQ(c.box_x1, 4);
+    EXPECT_EQ(c.box_y0, 2);
+    EXPECT_EQ(c.box_y1, 2);
+    // At tolerance 2 the pixel is within it; the max and PSNR stay.
+    const rt::ImageComparison c2 = rt::compare_images(a, b, 2);
+    EXPECT_EQ(c2.pixels_over, 0u);
+    EXPECT_TRUE(c2.box_empty());
+    EXPECT_EQ(c2.max_diff, 2);
+    // The tests' compare() is the same measure at tolerance 1.
+    const ImageDiff d = compare(a, b);
+    EXPECT_EQ(d.max_diff, c.max_diff);
+    EXPECT_EQ(d.mean_diff, c.mean_diff);
+    EXPECT_EQ(d.pct_over_1, c.pct_over);
+    EXPECT_EQ(d.psnr, c.psnr);
+}
+
+TEST(ImageDiff, OffByOneIsWithinTheDefaultTolerance) {
+    const rt::Image a = gradient(4, 4);
+    rt::Image b = a;
+    at(b, 0, 0, 0) -= 1;
+    EXPECT_EQ(rt::compare_images(a, b).pixels_over, 0u);
+    EXPECT_EQ(rt::compare_images(a, b, 0).pixels_over, 1u);
+}
+
+TEST(ImageDiff, BoundingBoxSpansEveryOffPixel) {
+    const rt::Image a = gradient(10, 8);
+    rt::Image b = a;
+    at(b, 6, 1, 0) += 5;
+    at(b, 2, 3, 2) += 9;
+    at(b, 8, 6, 1) -= 30;
+    const rt::ImageComparison c = rt::compare_images(a, b);
+    EXPECT_EQ(c.pixels_over, 3u);
+    EXPECT_EQ(c.max_diff, 30);
+    EXPECT_EQ(c.box_x0, 2);
+    EXPECT_EQ(c.box_x1, 8);
+    EXPECT_EQ(c.box_y0, 1);
+    EXPECT_EQ(c.box_y1, 6);
+}
+
+TEST(ImageDiff, DifferentSizesAreTotallyDifferent) {
+    const rt::ImageComparison c = rt::compare_images(gradient(4, 4), gradient(4, 5));
+    EXPECT_FALSE(c.same_size);
+    EXPECT_EQ(c.max_diff, 256);
+    EXPECT_EQ(c.pct_over, 100);
+    EXPECT_EQ(c.psnr, 0);
+    const ImageDiff d = compare(gradient(4, 4), gradient(5, 4));
+    EXPECT_EQ(d.max_diff, 256);
+    EXPECT_EQ(d.mean_diff, 255);
+    EXPECT_EQ(d.pct_over_1, 100);
+    EXPECT_EQ(d.psnr, 0);
+}
+
+TEST(ImageDiff, HeatmapMarksOnlyTheOffPixels) {
+    const rt::Image a = gradient(6, 4);
+    rt::Image b = a;
+    at(b, 1, 1, 0) += 1;   // within the tolerance
+    at(b, 3, 2, 2) += 10;  // over it
+    const rt::Image h = rt::diff_heatmap(a, b);
+    ASSERT_EQ(h.width, 6);
+    ASSERT_EQ(h.height, 4);
+    for (int y = 0; y < 4; ++y)
+        for (int x = 0; x < 6; ++x) {
+            const uint8_t r = px(h, x, y, 0), g = px(h, x, y, 1),
+                          bl = px(h, x, y, 2);
+            if (x == 3 && y == 2) {
+                EXPECT_EQ(r, 255);
+                EXPECT_EQ(bl, 0);
+            } else if (x == 1 && y == 1) {
+                EXPECT_EQ(r, 0);
+                EXPECT_GT(bl, 0);
+            } else {
+                EXPECT_TRUE(r == g && g == bl && r < 64) << x << "," << y;  // dimmed grey
+            }
+        }
+}
+
+TEST(ImageDiff, ReadImageReadsPngAndPpmAndNamesBadFiles) {
+    TempDir tmp;
+    const rt::Image a = gradient(5, 3);
+    rt::write_png(a, tmp / "a.png");
+    rt::write_ppm(a, tmp / "a.ppm");
+    EXPECT_EQ(rt::read_image(tmp / "a.png").rgb, a.rgb);
+    EXPECT_EQ(rt::read_image(tmp / "a.ppm").rgb, a.rgb);
+    write_text(tmp / "text.png", "not an image\n");
+    for (const std::string& bad : {tmp / "missing.png", tmp / "text.png", tmp.path()}) {
+        try {
+            rt::read_image(bad);
+            ADD_FAILURE() << bad << " was read";
+        } catch (const rt::InputError& e) {
+            EXPECT_EQ(std::string(e.what()).rfind(bad + ": ", 0), 0u) << e.what();
+        }
+    }
+}
+
+// ./rtdiff itself.
+
+class RtdiffTool : public ::testing::Test {
+protected:
+    void SetUp() override {
+        a_ = gradient(20, 10);
+        b_ = a_;
+        at(b_, 13, 7, 0) += 2;
+        rt::write_png(a_, tmp_ / "a.png");
+        rt::write_png(b_, tmp_ / "b.png");
+        rt::write_ppm(a_, tmp_ / "a.ppm");
+    }
+    RunResult run(const std::vector<std::string>& args) { return run_program(rtdiff_path(), args, tmp_.path(), 60); }
+    TempDir tmp_;
+    rt::Image a_, b_;
+};
+
+TEST_F(RtdiffTool, IdenticalImagesPrintZeroAndInf) {
+    const RunResult r = run({"a.png", "a.ppm"});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(contains(r.out, "same size, 20x10")) << r.out;
+    EXPECT_TRUE(contains(r.out, "max 0, mean 0.0000, 0 of 200 pixels (0.0000%) off by more than 1, PSNR inf, box none"))
+        << r.out;
+    EXPECT_EQ(r.err, "");
+}
+
+TEST_F(RtdiffTool, OnePixelOffByTwo) {
+    const RunResult r = run({"a.png", "b.png"});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(contains(r.out, "max 2, ")) << r.out;
+    EXPECT_TRUE(contains(r.out, "1 of 200 pixels (0.5000%) off by more than 1")) << r.out;
+    EXPECT_TRUE(contains(r.out, "box x 13..13 y 7..7")) << r.out;
+    const RunResult t = run({"--tolerance", "2", "a.png", "b.png"});
+    EXPECT_EQ(t.exit_code, 0);
+    EXPECT_TRUE(contains(t.out, "0 of 200 pixels (0.0000%) off by more than 2")) << t.out;
+}
+
+TEST_F(RtdiffTool, FailAboveExitsOneOnlyWhenOver) {
+    EXPECT_EQ(run({"--fail-above", "0.5", "a.png", "b.png"}).exit_code, 0);  // 0.5% is not more than 0.5%
+    const RunResult over = run({"--fail-above", "0.4", "a.png", "b.png"});
+    EXPECT_EQ(over.exit_code, 1);
+    EXPECT_TRUE(contains(over.out, "over --fail-above")) << over.out;
+    EXPECT_EQ(run({"--fail-above=0", "a.png", "a.png"}).exit_code, 0);
+}
+
+TEST_F(RtdiffTool, HeatmapIsWritten) {
+    const RunResult r = run({"--heatmap", "h.png", "a.png", "b.png"});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    rt::Image h;
+    ASSERT_TRUE(load_png(tmp_ / "h.png", h));
+    EXPECT_EQ(h.rgb, rt::diff_heatmap(a_, b_).rgb);
+}
+
+TEST_F(RtdiffTool, BadInputIsOneLineAndExitOne) {
+    write_text(tmp_ / "text.png", "hello\n");
+    rt::write_png(gradient(21, 10), tmp_ / "wide.png");
+    const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+        {{"missing.png", "a.png"}, "rtdiff: missing.png: no such file\n"},
+        {{"a.png", "text.png"}, "rtdiff: text.png: not a PNG or PPM image"},
+        {{"a.png", "wide.png"}, "rtdiff: wide.png: 21x10, but a.png is 20x10\n"},
+    };
+    for (const auto& [args, line] : cases) {
+        const RunResult r = run(args);
+        EXPECT_EQ(r.exit_code, 1) << args[0] << " " << args[1];
+        EXPECT_EQ(r.err.rfind(line, 0), 0u) << r.err;
+        EXPECT_EQ(split_lines(r.err).size(), 1u) << r.err;
+        EXPECT_EQ(r.out, "");
+    }
+}
+
+TEST_F(RtdiffTool, UsageErrorsExitTwo) {
+    for (const std::vector<std::string>& args :
+         {std::vector<std::string>{"a.png"}, {"a.png", "b.png", "c.png"}, {"--tolerance", "x", "a.png", "b.png"},
+          {"--fail-above", "101", "a.png", "b.png"}, {"--bogus", "a.png", "b.png"}}) {
+        const RunResult r = run(args);
+        EXPECT_EQ(r.exit_code, 2) << args[0];
+        EXPECT_EQ(r.err.rfind("rtdiff: ", 0), 0u) << r.err;
+    }
+}
+
+TEST_F(RtdiffTool, FoldersCompareByNameWorstFirst) {
+    TempDir a, b;
+    rt::Image big = a_;
+    for (int x = 0; x < 10; ++x) at(big, x, 0, 2) ^= 0x80;
+    rt::write_png(a_, a / "same.png");
+    rt::write_png(a_, b / "same.png");
+    rt::write_png(a_, a / "one.png");
+    rt::write_png(b_, b / "one.png");
+    rt::write_png(a_, a / "many.png");
+    rt::write_png(big, b / "many.png");
+    rt::write_png(a_, a / "only_a.png");
+    rt::write_ppm(a_, b / "only_b.ppm");
+    write_text(a / "notes.txt", "not an image, not listed\n");
+    const RunResult r = run_program(rtdiff_path(), {a.path(), b.path()});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    const std::vector<std::string> lines = split_lines(r.out);
+    ASSERT_GE(lines.size(), 7u) << r.out;
+    EXPECT_EQ(lines[1].rfind("many.png", 0), 0u) << r.out;
+    EXPECT_EQ(lines[2].rfind("one.png", 0), 0u) << r.out;
+    EXPECT_EQ(lines[3].rfind("same.png", 0), 0u) << r.out;
+    EXPECT_TRUE(contains(lines[2], "x 13..13 y 7..7")) << lines[2];
+    EXPECT_TRUE(contains(lines[3], "inf")) << lines[3];
+    EXPECT_TRUE(contains(r.out, "only in " + a.path() + ": only_a.png\n")) << r.out;
+    EXPECT_TRUE(contains(r.out, "only in " + b.path() + ": only_b.ppm\n")) << r.out;
+    EXPECT_FALSE(contains(r.out, "notes.txt"));
+    // many.png has 5% of its pixels off, one.png 0.5%.
+    EXPECT_EQ(run_program(rtdiff_path(), {"--fail-above", "5", a.path(), b.path()}).exit_code, 0);
+    const RunResult over = run_program(rtdiff_path(), {"--fail-above", "1", a.path(), b.path()});
+    EXPECT_EQ(over.exit_code, 1);
+    EXPECT_TRUE(contains(over.out, "1 over --fail-above")) << over.out;
+}
+
+TEST_F(RtdiffTool, AFolderAndAFileIsBadInput) {
+    const RunResult mixed = run({tmp_.path(), "a.png"});
+    EXPECT_EQ(mixed.exit_code, 1);
+    EXPECT_EQ(mixed.err, "rtdiff: a.png: not a folder, but " + tmp_.path() + " is one\n");
+}
