@@ -22,7 +22,9 @@ rt::Image gradient(int w, int h) {
     return img;
 }
 
-uint8_t& at(rt::Image& img, int x, int y, int c) { return img.rgb[(size_t(y) * size_t(img.width) + size_t(x)) * 3 + size_t(c)]; }
+uint8_t& at(rt::Image& img, int x, int y, int c) {
+    return img.rgb[(size_t(y) * size_t(img.width) + size_t(x)) * 3 + size_t(c)];
+}
 
 uint8_t px(const rt::Image& img, int x, int y, int c) {
     return img.rgb[(size_t(y) * size_t(img.width) + size_t(x)) * 3 + size_t(c)];
@@ -119,8 +121,7 @@ TEST(ImageDiff, HeatmapMarksOnlyTheOffPixels) {
     ASSERT_EQ(h.height, 4);
     for (int y = 0; y < 4; ++y)
         for (int x = 0; x < 6; ++x) {
-            const uint8_t r = px(h, x, y, 0), g = px(h, x, y, 1),
-                          bl = px(h, x, y, 2);
+            const uint8_t r = px(h, x, y, 0), g = px(h, x, y, 1), bl = px(h, x, y, 2);
             if (x == 3 && y == 2) {
                 EXPECT_EQ(r, 255);
                 EXPECT_EQ(bl, 0);
@@ -222,9 +223,11 @@ TEST_F(RtdiffTool, BadInputIsOneLineAndExitOne) {
 }
 
 TEST_F(RtdiffTool, UsageErrorsExitTwo) {
-    for (const std::vector<std::string>& args :
-         {std::vector<std::string>{"a.png"}, {"a.png", "b.png", "c.png"}, {"--tolerance", "x", "a.png", "b.png"},
-          {"--fail-above", "101", "a.png", "b.png"}, {"--bogus", "a.png", "b.png"}}) {
+    for (const std::vector<std::string>& args : {std::vector<std::string>{"a.png"},
+                                                 {"a.png", "b.png", "c.png"},
+                                                 {"--tolerance", "x", "a.png", "b.png"},
+                                                 {"--fail-above", "101", "a.png", "b.png"},
+                                                 {"--bogus", "a.png", "b.png"}}) {
         const RunResult r = run(args);
         EXPECT_EQ(r.exit_code, 2) << args[0];
         EXPECT_EQ(r.err.rfind("rtdiff: ", 0), 0u) << r.err;
