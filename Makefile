@@ -100,6 +100,27 @@ else
 endif
 endef
 
+# $(eval $(call helper_program,NAME,MAIN)): a program beside ./raytracer (rtconvert, rtdiff):
+# NAME linked from $(BUILD)/MAIN.o and the library, `make clean` removes it, and the tests
+# under the sanitizers (check-asan, mk/check.mk, included before it) get a sanitized NAME too.
+define helper_program
+$(1): $$(BUILD)/$(2).o $$(BUILD)/librt.a build/precision $$(BUILD)/config
+	$$(CXX) $$(CXXFLAGS) -o $$@ $$(filter-out build/precision $$(BUILD)/config,$$^) $$(LDLIBS)
+
+.PHONY: clean-$(1)
+clean: clean-$(1)
+clean-$(1):
+	rm -f $(1)
+
+-include $$(BUILD)/$(2).d
+
+ifdef ASAN_DIR
+$$(ASAN_DIR)/$(1): $$(ASAN_DIR)/$(2).o $$(ASAN_DIR)/librt.a
+	$$(CXX) $$(ASAN_CXXFLAGS) -o $$@ $$^ $$(LDLIBS)
+check-asan: $$(ASAN_DIR)/$(1)
+endif
+endef
+
 # Further targets (benchmarks, sanitizers, fuzzing, converters) live in mk/*.mk.
 -include $(sort $(wildcard mk/*.mk))
 

@@ -10,25 +10,9 @@
 $(eval $(call optional_library,RT_HAVE_PUGIXML,pugixml.hpp,-lpugixml,RT_NO_XML))
 $(eval $(call optional_library,RT_HAVE_TINYOBJ,tiny_obj_loader.h,-ltinyobjloader_double,RT_NO_OBJ))
 
-.PHONY: clean-rtconvert
 ifeq ($(RT_HAVE_PUGIXML)$(RT_HAVE_TINYOBJ),11)
 all: rtconvert
 # The converter tests run ./rtconvert.
 test: rtconvert
 endif
-clean: clean-rtconvert
-
-rtconvert: $(BUILD)/src/convert/convert_main.o $(BUILD)/librt.a build/precision $(BUILD)/config
-	$(CXX) $(CXXFLAGS) -o $@ $(filter-out build/precision $(BUILD)/config,$^) $(LDLIBS)
-
-clean-rtconvert:
-	rm -f rtconvert
-
--include $(BUILD)/src/convert/convert_main.d
-
-# check-asan (mk/check.mk) runs the tests from $(ASAN_DIR), so a sanitized rtconvert sits there too.
-ifdef ASAN_DIR
-$(ASAN_DIR)/rtconvert: $(ASAN_DIR)/src/convert/convert_main.o $(ASAN_DIR)/librt.a
-	$(CXX) $(ASAN_CXXFLAGS) -o $@ $^ $(LDLIBS)
-check-asan: $(ASAN_DIR)/rtconvert
-endif
+$(eval $(call helper_program,rtconvert,src/convert/convert_main))

@@ -16,8 +16,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include <stb/stb_image.h>
-
+#include "rt/error.h"
 #include "rt/image_diff.h"
 
 namespace fs = std::filesystem;
@@ -160,14 +159,12 @@ RunResult run_program(const std::string& exe, const std::vector<std::string>& ar
 }
 
 bool load_png(const std::string& path, rt::Image& out) {
-    int w = 0, h = 0, n = 0;
-    unsigned char* data = stbi_load(path.c_str(), &w, &h, &n, 3);
-    if (!data) return false;
-    out.width = w;
-    out.height = h;
-    out.rgb.assign(data, data + size_t(w) * size_t(h) * 3);
-    stbi_image_free(data);
-    return true;
+    try {
+        out = rt::read_image(path);  // the library's reader, as ./rtdiff uses
+        return true;
+    } catch (const rt::InputError&) {
+        return false;
+    }
 }
 
 ImageDiff compare(const rt::Image& a, const rt::Image& b) {
