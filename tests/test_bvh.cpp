@@ -238,9 +238,9 @@ void check_structure(const rt::Scene& s) {
             for (int a = 0; a < 3; ++a) ASSERT_LE(nd.lo[a][k], nd.hi[a][k]) << "inverted box at node " << it.node;
             if (nd.is_leaf(k)) {
                 const uint32_t first = ~static_cast<uint32_t>(nd.child[k]);
-                ASSERT_GT(nd.count[k], 0) << "empty leaf at node " << it.node;
-                ASSERT_LE(size_t(first) + nd.count[k], n);
-                for (uint32_t i = first; i < first + nd.count[k]; ++i) {
+                ASSERT_GT(nd.leaf_size(k), 0u) << "empty leaf at node " << it.node;
+                ASSERT_LE(size_t(first) + nd.leaf_size(k), n);
+                for (uint32_t i = first; i < first + nd.leaf_size(k); ++i) {
                     ++covered[i];
                     const rt::Box b = prim_bounds(s, bvh.prims[i]);
                     for (int a = 0; a < 3; ++a)
@@ -442,27 +442,74 @@ void shoot(const rt::Scene& s, Checker& ck, Rng& rng, int rays, Real extent) {
 // trips written side by side in one braced assignment (build_scene.cpp, is_float).
 [[gnu::noinline]] Real to_float(Real x) { return Real(float(x)); }
 
-// float_vertices: the mesh's positions rounded to float, as a PLY mesh's are, so
-// that leaves read them from Acceleration::leaf_vertices (when there are no spheres).
-void run_soup(const SoupSpec& spec, int rays, bool float_vertices = false) {
+// How run_soup's mesh positions are given: as random doubles; rounded to float,
+// as a PLY mesh's are, so that leaves read them from Acceleration::leaf_vertices;
+// or rounded for three triangles in four, so that some leaves read the copy and
+// the others (Bvh4Node::kIndexedLeaf) their triangles' positions.
+enum class Vertices { kDouble, kFloat, kMixed };
+
+// Whether every coordinate of the leaf's primitives (prims[first, first + size))
+// is a float exactly, and all of them are triangles.
+bool leaf_is_float(const rt::Scene& s, uint32_t first, uint32_t size) {
+    for (uint32_t i = first; i < first + size; ++i) {
+        const rt::ShapeRef shape = s.geometry.shape_of(s.accel.bvh.prims[i]);
+        if (shape.kind != rt::ShapeKind::Triangle) return false;
+        for (uint32_t v : s.geometry.triangles[shape.index].v) {
+            const Vec3 p = s.geometry.positions[v];
+            if (to_float(p.x) != p.x || to_float(p.y) != p.y || to_float(p.z) != p.z) return false;
+        }
+    }
+    return true;
+}
+
+// The leaf-order copy serves exactly the leaves of float triangles, holds their
+// vertices, and exists when it serves some leaf (scene.h, LeafVertices). Returns
+// how many leaves it serves and how many there are.
+std::pair<size_t, size_t> check_leaf_vertices(const rt::Scene& s) {
+    const float* copy = s.accel.leaf_vertices.data();
+    size_t float_leaves = 0, leaves = 0;
+    for (const rt::Bvh4Node& nd : s.accel.bvh.nodes)
+        for (int k = 0; k < 4; ++k) {
+            if (!nd.is_leaf(k) || nd.child[k] == rt::Bvh4Node::kEmpty) continue;
+            ++leaves;
+            const uint32_t first = ~static_cast<uint32_t>(nd.child[k]);
+            const bool is_float = leaf_is_float(s, first, nd.leaf_size(k));
+            float_leaves += is_float;
+            if (!copy) continue;
+            EXPECT_EQ(!(nd.count[k] & rt::Bvh4Node::kIndexedLeaf), is_float) << "leaf at prims[" << first << "]";
+            if (!is_float) continue;
+            for (uint32_t i = first; i < first + nd.leaf_size(k); ++i) {
+                const rt::Triangle& t = s.geometry.triangles[s.accel.bvh.prims[i]];
+                for (int v = 0; v < 3; ++v)
+                    for (int a = 0; a < 3; ++a)
+                        EXPECT_EQ(Real(copy[9 * i + 3 * v + a]), s.geometry.positions[t.v[v]][a])
+                            << "prims[" << i << "]";
+            }
+        }
+    EXPECT_EQ(copy != nullptr, rt::kLeafBlock > 1 && float_leaves > 0)
+        << float_leaves << " of " << leaves << " leaves hold only float triangles";
+    return {float_leaves, leaves};
+}
+
+void run_soup(const SoupSpec& spec, int rays, Vertices vertices = Vertices::kDouble) {
+    const char* names[] = {"", ", float vertices", ", float vertices in 3 of 4 triangles"};
     SCOPED_TRACE("seed " + std::to_string(spec.seed) + ", " + std::to_string(spec.triangles) + " triangles, " +
-                 std::to_string(spec.spheres) + " spheres" + (float_vertices ? ", float vertices" : ""));
+                 std::to_string(spec.spheres) + " spheres" + names[int(vertices)]);
     Rng rng(spec.seed);
     rt::SceneDesc d = random_scene(spec, rng);
-    if (float_vertices)
+    if (vertices != Vertices::kDouble)
         for (rt::MeshDesc& m : d.meshes)
-            for (Vec3& p : m.positions) p = {to_float(p.x), to_float(p.y), to_float(p.z)};
+            for (size_t i = 0; i < m.indices.size(); ++i) {
+                if (vertices == Vertices::kMixed && i / 3 % 4 == 0) continue;
+                Vec3& p = m.positions[m.indices[i]];
+                p = {to_float(p.x), to_float(p.y), to_float(p.z)};
+            }
     const rt::Scene s = rt::build_scene(std::move(d));
     check_structure(s);
-    // The leaf-order copy exists exactly when it changes no number (scene.h).
-    const bool want_copy =
-        float_vertices && rt::kLeafBlock > 1 && s.geometry.spheres.empty() && !s.geometry.triangles.empty();
-    EXPECT_EQ(s.accel.leaf_vertices.data() != nullptr, want_copy);
-    if (want_copy) {  // the copy holds each leaf triangle's vertices
-        ASSERT_GE(s.accel.leaf_vertices.triangles() * 9 * sizeof(float), s.accel.bvh.prims.size() * 9 * sizeof(float));
-        const size_t i = s.accel.bvh.prims.size() - 1;
-        const rt::Triangle& t = s.geometry.triangles[s.accel.bvh.prims[i]];
-        EXPECT_EQ(Real(s.accel.leaf_vertices.data()[9 * i + 8]), s.geometry.positions[t.v[2]].z);
+    const auto [float_leaves, leaves] = check_leaf_vertices(s);
+    if (vertices == Vertices::kMixed) {  // both kinds of leaves, or the test says little
+        EXPECT_GT(float_leaves, 0u);
+        EXPECT_LT(float_leaves, leaves);
     }
     Checker ck{s};
     shoot(s, ck, rng, rays, spec.extent);
@@ -507,11 +554,18 @@ TEST(BvhProperty, LargeSoups) {
 
 // The same checks with float vertices: leaves read the leaf-order copy.
 TEST(BvhProperty, FloatVertexSoups) {
-    for (uint64_t seed = 1; seed <= 4; ++seed) run_soup({seed + 400, 9, 0, 0, 2, 1, true}, 300, true);
-    run_soup({31, 500, 0, 2, 3, 1.5, true}, 2000, true);
-    run_soup({32, 3000, 0, 1, 10, 1, false}, 400, true);
-    run_soup({33, 2000, 0, 0, 1, 0.05, false}, 500, true);
-    run_soup({34, 300, 20, 0, 5, 2, false}, 500, true);  // spheres: no copy, the same answers
+    for (uint64_t seed = 1; seed <= 4; ++seed) run_soup({seed + 400, 9, 0, 0, 2, 1, true}, 300, Vertices::kFloat);
+    run_soup({31, 500, 0, 2, 3, 1.5, true}, 2000, Vertices::kFloat);
+    run_soup({32, 3000, 0, 1, 10, 1, false}, 400, Vertices::kFloat);
+    run_soup({33, 2000, 0, 0, 1, 0.05, false}, 500, Vertices::kFloat);
+    run_soup({34, 300, 20, 0, 5, 2, false}, 500, Vertices::kFloat);  // spheres' leaves read their ids
+}
+
+// Some leaves read the copy, the others their primitives' ids: the same answers.
+TEST(BvhProperty, MixedVertexSoups) {
+    for (uint64_t seed = 1; seed <= 4; ++seed) run_soup({seed + 500, 40, 2, 0, 2, 1, true}, 300, Vertices::kMixed);
+    run_soup({41, 3000, 50, 1, 10, 1, false}, 400, Vertices::kMixed);
+    run_soup({42, 2000, 0, 0, 1, 0.05, true}, 500, Vertices::kMixed);
 }
 
 TEST(BvhProperty, AllCoincident) {

@@ -417,7 +417,7 @@ TEST(Stats, DefaultBvhOptionsBuildTheSameTree) {
     for (const rt::Bvh4Node& n : c.accel.bvh.nodes)
         for (int i = 0; i < 4; ++i)
             if (n.is_leaf(i) && n.child[i] != rt::Bvh4Node::kEmpty) {
-                EXPECT_LE(n.count[i], 1);
+                EXPECT_LE(n.leaf_size(i), 1u);
             }
 }
 

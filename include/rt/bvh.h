@@ -80,7 +80,12 @@ struct alignas(64) Bvh4Node {
     uint8_t pad[8];
 
     static constexpr int32_t kEmpty = INT32_MIN;  // an unused slot (count 0)
+    // Set in a leaf's count when its primitives are read through their ids, not
+    // from the leaf-order vertices (build_scene.cpp); the low bits hold its size.
+    static constexpr uint16_t kIndexedLeaf = 0x8000;
     bool is_leaf(int i) const { return child[i] < 0; }
+    static uint32_t leaf_size_of(uint16_t c) { return c & ~uint32_t(kIndexedLeaf); }
+    uint32_t leaf_size(int i) const { return leaf_size_of(count[i]); }
 };
 static_assert(sizeof(Bvh4Node) == 128, "Bvh4Node must stay two cache lines");
 

@@ -46,7 +46,7 @@ struct SceneSetup {
 //  1. include/rt/scene.h (here): its struct (with a `material`); its enumerator in
 //     ShapeKind and kShapeKinds (a bounded shape goes before Plane); its array in
 //     Geometry; its case in Geometry's shape_of (the one decoding of an id), count,
-//     bounds, intersect and surface, and in holds_leaf_vertices.
+//     bounds, intersect and surface.
 //  2. include/rt/intersect.h: its ray test, beside intersect_sphere.
 //  3. src/geometry/build_scene.cpp: its array filled from the SceneDesc (build()).
 // The loader reads it into the SceneDesc (scene_desc.h, src/loader/scene_from_json.cpp).
@@ -72,21 +72,6 @@ struct Plane {
     Vec3 point, normal;  // normal has unit length
     uint32_t material;
 };
-
-// Whether the leaf-order vertices (LeafVertices) can stand in for this kind's
-// primitives in the BVH leaves: they hold three vertices per primitive, which is
-// all a triangle is. build_scene makes them only when every kind present says yes.
-constexpr bool holds_leaf_vertices(ShapeKind kind) {
-    switch (kind) {
-        case ShapeKind::Triangle:
-            return true;
-        case ShapeKind::Sphere:
-            return false;
-        case ShapeKind::Plane:
-            return true;  // not in the BVH
-    }
-    return false;
-}
 
 // A primitive: its kind and its index in that kind's array.
 struct ShapeRef {
@@ -231,10 +216,11 @@ struct Geometry {
 
 // Each BVH leaf triangle's vertices a, b, c as 9 floats, in leaf order (entry i is
 // triangle bvh.prims[i]), so that a leaf's triangles are one block of memory
-// instead of a chain of loads (prims, triangles, positions). build_scene makes them
-// only when they change no number the tests see: every vertex coordinate is a
-// float exactly (PLY meshes are), every shape kind present holds_leaf_vertices,
-// and leaves test four triangles at once (kLeafBlock). Their storage is the one
+// instead of a chain of loads (prims, triangles, positions). They stand in for a
+// leaf only where they change no number the tests see: a leaf of triangles whose
+// every vertex coordinate is a float exactly (PLY meshes are); build_scene marks
+// every other leaf Bvh4Node::kIndexedLeaf, and makes them only when some leaf is
+// served and leaves test four triangles at once (kLeafBlock). Their storage is the one
 // the BVH build's boxes were in (ReusableStorage: its pages are already touched,
 // and on this VM a fresh page costs more than the copy into it).
 class LeafVertices {

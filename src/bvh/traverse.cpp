@@ -189,15 +189,18 @@ inline int edges4(const RayPre& p, const Vertices4& vx, int n, Edges4& e) {
     return out;
 }
 
-// Calls hit(id, t) (weights in w) for every primitive of prims[first, end) that
-// the ray hits in (tmin, limit()), in leaf order; limit() is read again for each
-// test, and hit() returns true to stop early (test_leaf then returns true).
+// Calls hit(id, t) (weights in w) for every primitive of the leaf at prims[first]
+// with Bvh4Node count `count` that the ray hits in (tmin, limit()), in leaf order;
+// limit() is read again for each test, and hit() returns true to stop early
+// (test_leaf then returns true).
 template <bool kCull, bool kShadow, class Limit, class OnHit>
-inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint32_t end, Real tmin, const Limit& limit,
+inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint16_t count, Real tmin, const Limit& limit,
                       Real w[3], const OnHit& hit) {
+    const uint32_t end = first + Bvh4Node::leaf_size_of(count);
     // Two loops, one per source of vertices: one loop choosing the source per
     // block of four was 3-10% slower (knot_4m_glass render, medians of 5 and 7).
-    if (const float* leaf_vertices = s.accel.leaf_vertices.data()) {
+    const float* leaf_vertices = s.accel.leaf_vertices.data();
+    if (leaf_vertices && !(count & Bvh4Node::kIndexedLeaf)) {
         // The leaf's vertices are one block; primitive ids are read only for hits.
         for (uint32_t i = first; i < end; i += 4) {
             const int n = static_cast<int>(std::min<uint32_t>(4, end - i));
@@ -237,8 +240,9 @@ inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint32_t 
 }
 #else
 template <bool kCull, bool kShadow, class Limit, class OnHit>
-inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint32_t end, Real tmin, const Limit& limit,
+inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint16_t count, Real tmin, const Limit& limit,
                       Real w[3], const OnHit& hit) {
+    const uint32_t end = first + Bvh4Node::leaf_size_of(count);
     for (uint32_t i = first; i < end; ++i) {
         const uint32_t id = s.accel.bvh.prims[i];
         Real t;
@@ -293,7 +297,7 @@ bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
             if (e.child < 0) {
                 const uint32_t first = ~static_cast<uint32_t>(e.child);
                 test_leaf<kCull, false>(
-                    s, p, first, first + e.count, tmin, [&] { return prim_limit; }, w,
+                    s, p, first, e.count, tmin, [&] { return prim_limit; }, w,
                     [&](uint32_t id, Real t) {
                         consider(id, t);
                         return false;
@@ -375,7 +379,7 @@ bool any_hit(const Scene& s, const Ray& ray, Real tmin, Real tmax, uint32_t* occ
         if (child < 0) {
             const uint32_t first = ~static_cast<uint32_t>(child);
             if (test_leaf<false, true>(
-                    s, p, first, first + count, tmin, [&] { return tmax; }, w,
+                    s, p, first, count, tmin, [&] { return tmax; }, w,
                     [&](uint32_t id, Real) {
                         if (occluder) *occluder = id;
                         return true;

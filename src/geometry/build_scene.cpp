@@ -142,45 +142,70 @@ inline bool is_float(Real x) { return Real(float(x)) == x; }
 // Floats in the leaf-order vertices of n triangles.
 constexpr size_t leaf_floats(size_t n) { return 9 * n; }
 
-// Whether the leaf-order vertices can stand in for every BVH primitive: each
-// shape kind present holds_leaf_vertices, there are triangles, and leaves test
-// four at a time.
-bool wants_leaf_vertices(const Geometry& g) {
-    if (kLeafBlock == 1 || g.triangles.empty()) return false;
-    for (ShapeKind k : kShapeKinds)
-        if (g.count(k) > 0 && !holds_leaf_vertices(k)) return false;
-    return true;
+// Copies the vertices of leaf positions [first, end) into out (9 floats each);
+// returns whether all of them are triangles whose coordinates are floats exactly,
+// so that the copy can stand in for them (LeafVertices).
+bool copy_leaf(const Geometry& g, const std::vector<uint32_t>& prims, uint32_t first, uint32_t end, float* out) {
+    bool exact = true;
+    for (uint32_t i = first; i < end; ++i) {
+        float* o = out + size_t(i) * 9;
+        const ShapeRef shape = g.shape_of<true>(prims[i]);
+        if (shape.kind != ShapeKind::Triangle) {
+            std::fill(o, o + 9, 0.0f);
+            exact = false;
+            continue;
+        }
+        const Triangle& t = g.triangles[shape.index];
+        for (int k = 0; k < 3; ++k) {
+            const Vec3& v = g.positions[t.v[k]];
+            o[3 * k] = float(v.x);
+            o[3 * k + 1] = float(v.y);
+            o[3 * k + 2] = float(v.z);
+            exact = exact && is_float(v.x) && is_float(v.y) && is_float(v.z);
+        }
+    }
+    return exact;
 }
 
-// The leaf-order vertices, when every position is a float exactly, written into
-// `storage` once the BVH build is done with the boxes there (sized for both); two
-// threads copy half each.
+// The leaf-order vertices, written into `storage` once the BVH build is done
+// with the boxes there (sized for both); two threads copy half the nodes each.
+// A leaf whose vertices the copy cannot stand in for (another shape, or a
+// coordinate that is not a float) is marked Bvh4Node::kIndexedLeaf; when that is
+// every leaf, there is no copy.
 void copy_leaf_vertices(Scene& s, ReusableStorage& storage) {
     const Geometry& g = s.geometry;
-    if (!wants_leaf_vertices(g)) return;
-    for (const Vec3& p : g.positions)
-        if (!is_float(p.x) || !is_float(p.y) || !is_float(p.z)) return;
+    if (kLeafBlock == 1 || g.triangles.empty()) return;
+    NodeArray& nodes = s.accel.bvh.nodes;
     const std::vector<uint32_t>& prims = s.accel.bvh.prims;
     const size_t n = prims.size();
     // The boxes' lifetime ends here: the bytes now hold floats.
     float* const out = storage.emplace<float>(leaf_floats(n));
-    auto copy = [&g, &prims, out](size_t begin, size_t end) {
-        for (size_t i = begin; i < end; ++i) {
-            const Triangle& t = g.triangles[prims[i]];
-            float* o = out + i * 9;
-            for (int k = 0; k < 3; ++k) {
-                const Vec3& v = g.positions[t.v[k]];
-                o[3 * k] = float(v.x);
-                o[3 * k + 1] = float(v.y);
-                o[3 * k + 2] = float(v.z);
+    // Returns the number of leaves the copy serves.
+    auto copy = [&g, &nodes, &prims, out](size_t begin, size_t end) {
+        size_t served = 0;
+        for (size_t k = begin; k < end; ++k) {
+            Bvh4Node& node = nodes[k];
+            for (int i = 0; i < 4; ++i) {
+                if (!node.is_leaf(i) || node.child[i] == Bvh4Node::kEmpty) continue;
+                const uint32_t first = ~static_cast<uint32_t>(node.child[i]);
+                if (copy_leaf(g, prims, first, first + node.leaf_size(i), out))
+                    ++served;
+                else
+                    node.count[i] |= Bvh4Node::kIndexedLeaf;
             }
         }
+        return served;
     };
-    if (n < (1u << 16))
-        copy(0, n);
-    else
-        in_parallel([&] { copy(0, n / 2); }, [&] { copy(n / 2, n); });
-    s.accel.leaf_vertices = LeafVertices(std::move(storage), out, n);
+    size_t served = 0;
+    if (n < (1u << 16)) {
+        served = copy(0, nodes.size());
+    } else {
+        const size_t half = nodes.size() / 2;
+        size_t second = 0;
+        in_parallel([&] { second = copy(half, nodes.size()); }, [&] { served = copy(0, half); });
+        served += second;
+    }
+    if (served > 0) s.accel.leaf_vertices = LeafVertices(std::move(storage), out, n);
 }
 
 // Builds everything, moving or releasing each mesh of `d` once it is copied.
@@ -206,7 +231,7 @@ Scene build(SceneDesc& d, const BvhBuildOptions& bvh) {
     // One allocation for the BVH's primitive boxes (boxes[id], triangles first) and
     // afterwards the leaf-order vertices that may take their place (copy_leaf_vertices).
     const size_t nboxes = ntri + d.spheres.size();
-    ReusableStorage storage(std::max(nboxes * sizeof(BuildBox), leaf_floats(ntri) * sizeof(float)));
+    ReusableStorage storage(std::max(nboxes * sizeof(BuildBox), leaf_floats(nboxes) * sizeof(float)));
     BuildBox* const boxes = storage.emplace<BuildBox>(nboxes);
     for (size_t i = 0; i < d.meshes.size(); ++i) {
         add_mesh(g, s.report, d.meshes[i], boxes);

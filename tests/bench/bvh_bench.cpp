@@ -54,7 +54,7 @@ double sah_cost(const rt::Bvh& bvh) {
     for (const rt::Bvh4Node& n : bvh.nodes)
         for (int i = 0; i < 4; ++i) {
             if (n.child[i] == rt::Bvh4Node::kEmpty) continue;
-            sum += area(n, i) * (n.is_leaf(i) ? double(n.count[i]) : 1.0);
+            sum += area(n, i) * (n.is_leaf(i) ? double(n.leaf_size(i)) : 1.0);
         }
     return root > 0 ? 1 + sum / root : 0;
 }
