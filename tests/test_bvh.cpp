@@ -482,7 +482,8 @@ std::pair<size_t, size_t> check_leaf_vertices(const rt::Scene& s) {
                 const rt::Triangle& t = s.geometry.triangles[s.accel.bvh.prims[i]];
                 for (int v = 0; v < 3; ++v)
                     for (int a = 0; a < 3; ++a)
-                        EXPECT_EQ(Real(copy[9 * i + 3 * v + a]), s.geometry.positions[t.v[v]][a])
+                        EXPECT_EQ(Real(copy[rt::LeafVertices::at(first, nd.leaf_size(k), i - first, v, a)]),
+                                  s.geometry.positions[t.v[v]][a])
                             << "prims[" << i << "]";
             }
         }

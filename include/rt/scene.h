@@ -216,17 +216,28 @@ struct Geometry {
 
 // Each BVH leaf triangle's vertices a, b, c as 9 floats, in leaf order (entry i is
 // triangle bvh.prims[i]), so that a leaf's triangles are one block of memory
-// instead of a chain of loads (prims, triangles, positions). They stand in for a
-// leaf only where they change no number the tests see: a leaf of triangles whose
-// every vertex coordinate is a float exactly (PLY meshes are); build_scene marks
-// every other leaf Bvh4Node::kIndexedLeaf, and makes them only when some leaf is
-// served and leaves test four triangles at once (kLeafBlock). Their storage is the one
+// instead of a chain of loads (prims, triangles, positions). Within a leaf of n
+// triangles the floats are grouped by coordinate (at(), below), so that four
+// triangles' x of vertex a, say, are one plain load, not a gather. They stand in
+// for a leaf only where they change no number the tests see: a leaf of triangles
+// whose every vertex coordinate is a float exactly (PLY meshes are); build_scene
+// marks every other leaf Bvh4Node::kIndexedLeaf, and makes them only when some
+// leaf is served and leaves test four triangles at once (kLeafBlock). Their storage is the one
 // the BVH build's boxes were in (ReusableStorage: its pages are already touched,
 // and on this VM a fresh page costs more than the copy into it).
 class LeafVertices {
 public:
+    // Floats for n triangles: loads of four floats from the last leaf's last
+    // triangle read up to three floats past its end.
+    static constexpr size_t floats_for(size_t n) { return 9 * n + 3; }
+    // Index of coordinate `axis` of vertex `k` of the triangle at leaf position
+    // first + j, in the leaf at prims[first, first + n).
+    static size_t at(uint32_t first, uint32_t n, uint32_t j, int k, int axis) {
+        return 9 * size_t(first) + size_t(3 * k + axis) * n + j;
+    }
+
     LeafVertices() = default;
-    // `floats` (9 per triangle, `triangles` of them) is the array `storage` holds.
+    // `floats` (floats_for(triangles)) is the array `storage` holds.
     LeafVertices(ReusableStorage&& storage, const float* floats, size_t triangles)
         : storage_(std::move(storage)), floats_(floats), triangles_(triangles) {}
     // Null when there are none.

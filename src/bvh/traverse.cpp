@@ -129,18 +129,17 @@ inline Vertices4 indexed_vertices4(const Scene& s, const RayPre& p, const uint32
     return r;
 }
 
-// Vertices of the triangles at leaf positions first .. first + n from
-// Acceleration::leaf_vertices (floats that equal the positions exactly).
-inline Vertices4 leaf_vertices4(const float* leaf_vertices, const RayPre& p, uint32_t first, int n) {
-    const float* base = leaf_vertices + size_t(first) * 9;
-    const __m128i lane = _mm_min_epi32(_mm_setr_epi32(0, 1, 2, 3), _mm_set1_epi32(n - 1));
-    const __m128i idx = _mm_mullo_epi32(lane, _mm_set1_epi32(9));
+// Vertices of the triangles at leaf positions first + j0 .. first + j0 + 4 of the
+// leaf at prims[first, first + n) from Acceleration::leaf_vertices (floats that
+// equal the positions exactly); lanes past the leaf's end hold other floats.
+inline Vertices4 leaf_vertices4(const float* leaf_vertices, const RayPre& p, uint32_t first, uint32_t n, uint32_t j0) {
     const int axis[3] = {p.kx, p.ky, p.kz};
     Vertices4 r;
     for (int k = 0; k < 3; ++k)
         for (int c = 0; c < 3; ++c)
-            r.v[k][c] = _mm256_sub_pd(_mm256_cvtps_pd(_mm_i32gather_ps(base + 3 * k + axis[c], idx, 4)),
-                                      _mm256_set1_pd(p.ray.org[axis[c]]));
+            r.v[k][c] =
+                _mm256_sub_pd(_mm256_cvtps_pd(_mm_loadu_ps(leaf_vertices + LeafVertices::at(first, n, j0, k, axis[c]))),
+                              _mm256_set1_pd(p.ray.org[axis[c]]));
     return r;
 }
 
@@ -202,10 +201,12 @@ inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint16_t 
     const float* leaf_vertices = s.accel.leaf_vertices.data();
     if (leaf_vertices && !(count & Bvh4Node::kIndexedLeaf)) {
         // The leaf's vertices are one block; primitive ids are read only for hits.
+        const uint32_t size = end - first;
         for (uint32_t i = first; i < end; i += 4) {
             const int n = static_cast<int>(std::min<uint32_t>(4, end - i));
             Edges4 e;
-            for (int mask = edges4<kCull>(p, leaf_vertices4(leaf_vertices, p, i, n), n, e); mask; mask &= mask - 1) {
+            for (int mask = edges4<kCull>(p, leaf_vertices4(leaf_vertices, p, first, size, i - first), n, e); mask;
+                 mask &= mask - 1) {
                 const int j = __builtin_ctz(mask);
                 Real t;
                 if (triangle_hit<kShadow>(p, e.lane(j), tmin, limit(), t, w) && hit(s.accel.bvh.prims[i + j], t))

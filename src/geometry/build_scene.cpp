@@ -139,28 +139,25 @@ namespace {
 // x is a float exactly.
 inline bool is_float(Real x) { return Real(float(x)) == x; }
 
-// Floats in the leaf-order vertices of n triangles.
-constexpr size_t leaf_floats(size_t n) { return 9 * n; }
-
-// Copies the vertices of leaf positions [first, end) into out (9 floats each);
-// returns whether all of them are triangles whose coordinates are floats exactly,
-// so that the copy can stand in for them (LeafVertices).
-bool copy_leaf(const Geometry& g, const std::vector<uint32_t>& prims, uint32_t first, uint32_t end, float* out) {
+// Copies the vertices of the leaf at prims[first, first + n) into out (layout:
+// LeafVertices::at); returns whether all of them are triangles whose coordinates
+// are floats exactly, so that the copy can stand in for them.
+bool copy_leaf(const Geometry& g, const std::vector<uint32_t>& prims, uint32_t first, uint32_t n, float* out) {
     bool exact = true;
-    for (uint32_t i = first; i < end; ++i) {
-        float* o = out + size_t(i) * 9;
-        const ShapeRef shape = g.shape_of<true>(prims[i]);
+    for (uint32_t j = 0; j < n; ++j) {
+        const ShapeRef shape = g.shape_of<true>(prims[first + j]);
         if (shape.kind != ShapeKind::Triangle) {
-            std::fill(o, o + 9, 0.0f);
+            for (int k = 0; k < 3; ++k)
+                for (int a = 0; a < 3; ++a) out[LeafVertices::at(first, n, j, k, a)] = 0.0f;
             exact = false;
             continue;
         }
         const Triangle& t = g.triangles[shape.index];
         for (int k = 0; k < 3; ++k) {
             const Vec3& v = g.positions[t.v[k]];
-            o[3 * k] = float(v.x);
-            o[3 * k + 1] = float(v.y);
-            o[3 * k + 2] = float(v.z);
+            out[LeafVertices::at(first, n, j, k, 0)] = float(v.x);
+            out[LeafVertices::at(first, n, j, k, 1)] = float(v.y);
+            out[LeafVertices::at(first, n, j, k, 2)] = float(v.z);
             exact = exact && is_float(v.x) && is_float(v.y) && is_float(v.z);
         }
     }
@@ -179,7 +176,8 @@ void copy_leaf_vertices(Scene& s, ReusableStorage& storage) {
     const std::vector<uint32_t>& prims = s.accel.bvh.prims;
     const size_t n = prims.size();
     // The boxes' lifetime ends here: the bytes now hold floats.
-    float* const out = storage.emplace<float>(leaf_floats(n));
+    float* const out = storage.emplace<float>(LeafVertices::floats_for(n));
+    std::fill(out + LeafVertices::floats_for(n) - 3, out + LeafVertices::floats_for(n), 0.0f);
     // Returns the number of leaves the copy serves.
     auto copy = [&g, &nodes, &prims, out](size_t begin, size_t end) {
         size_t served = 0;
@@ -188,7 +186,7 @@ void copy_leaf_vertices(Scene& s, ReusableStorage& storage) {
             for (int i = 0; i < 4; ++i) {
                 if (!node.is_leaf(i) || node.child[i] == Bvh4Node::kEmpty) continue;
                 const uint32_t first = ~static_cast<uint32_t>(node.child[i]);
-                if (copy_leaf(g, prims, first, first + node.leaf_size(i), out))
+                if (copy_leaf(g, prims, first, node.leaf_size(i), out))
                     ++served;
                 else
                     node.count[i] |= Bvh4Node::kIndexedLeaf;
@@ -231,7 +229,7 @@ Scene build(SceneDesc& d, const BvhBuildOptions& bvh) {
     // One allocation for the BVH's primitive boxes (boxes[id], triangles first) and
     // afterwards the leaf-order vertices that may take their place (copy_leaf_vertices).
     const size_t nboxes = ntri + d.spheres.size();
-    ReusableStorage storage(std::max(nboxes * sizeof(BuildBox), leaf_floats(nboxes) * sizeof(float)));
+    ReusableStorage storage(std::max(nboxes * sizeof(BuildBox), LeafVertices::floats_for(nboxes) * sizeof(float)));
     BuildBox* const boxes = storage.emplace<BuildBox>(nboxes);
     for (size_t i = 0; i < d.meshes.size(); ++i) {
         add_mesh(g, s.report, d.meshes[i], boxes);
