@@ -85,6 +85,11 @@ struct Hit {
     ShapeKind kind = ShapeKind::Triangle;
     uint32_t index = 0;     // into Geometry::triangles, spheres or planes
     Real w[3] = {0, 0, 0};  // barycentric weights (triangles)
+    // A triangle found in the leaf-order vertices (LeafVertices): its coordinate
+    // `axis` of vertex k is corners[(3 * k + axis) * stride], equal to its
+    // position's. Shading reads them there, already in cache. Null otherwise.
+    const float* corners = nullptr;
+    uint32_t stride = 0;
 };
 
 // What shading needs to know about a hit point.
@@ -136,11 +141,11 @@ struct Geometry {
         return {ShapeKind::Plane, id - static_cast<uint32_t>(spheres.size())};
     }
 
-    // Unit geometric normal of triangle i, counter-clockwise front (spec 3, "Triangle").
+    // Unit geometric normal of the triangle a, b, c, counter-clockwise front (spec 3, "Triangle").
+    static Vec3 face_normal(Vec3 a, Vec3 b, Vec3 c) { return normalize(cross(b - a, c - a)); }
     Vec3 face_normal(uint32_t i) const {
         const Triangle& t = triangles[i];
-        const Vec3 a = positions[t.v[0]];
-        return normalize(cross(positions[t.v[1]] - a, positions[t.v[2]] - a));
+        return face_normal(positions[t.v[0]], positions[t.v[1]], positions[t.v[2]]);
     }
 
     // Bounds of a primitive, rounded outwards to float (infinite for a plane).
@@ -185,12 +190,19 @@ struct Geometry {
         return false;
     }
 
+    // Vertex k of the triangle of `h` from its leaf-order vertices (h.corners).
+    static Vec3 corner(const Hit& h, int k) {
+        const float* c = h.corners + size_t(3 * k) * h.stride;
+        return {c[0], c[h.stride], c[2 * size_t(h.stride)]};
+    }
+
     // The surface at hit point p of `h`.
     Surface surface(const Hit& h, Vec3 p) const {
         switch (h.kind) {
             case ShapeKind::Triangle: {
                 const Triangle& tri = triangles[h.index];
-                const Vec3 ng = face_normal(h.index);
+                const Vec3 ng =
+                    h.corners ? face_normal(corner(h, 0), corner(h, 1), corner(h, 2)) : face_normal(h.index);
                 Vec3 ns = ng;
                 if (tri.smooth) {
                     const Vec3 n = vertex_normals[tri.v[0]] * h.w[0] + vertex_normals[tri.v[1]] * h.w[1] +

@@ -188,10 +188,11 @@ inline int edges4(const RayPre& p, const Vertices4& vx, int n, Edges4& e) {
     return out;
 }
 
-// Calls hit(id, t) (weights in w) for every primitive of the leaf at prims[first]
-// with Bvh4Node count `count` that the ray hits in (tmin, limit()), in leaf order;
-// limit() is read again for each test, and hit() returns true to stop early
-// (test_leaf then returns true).
+// Calls hit(id, t, corners) (weights in w) for every primitive of the leaf at
+// prims[first] with Bvh4Node count `count` that the ray hits in (tmin, limit()), in
+// leaf order; corners is the triangle's first float in the leaf-order vertices
+// (Hit::corners, with the leaf's size as stride), or null. limit() is read again
+// for each test, and hit() returns true to stop early (test_leaf then returns true).
 template <bool kCull, bool kShadow, class Limit, class OnHit>
 inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint16_t count, Real tmin, const Limit& limit,
                       Real w[3], const OnHit& hit) {
@@ -209,7 +210,9 @@ inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint16_t 
                  mask &= mask - 1) {
                 const int j = __builtin_ctz(mask);
                 Real t;
-                if (triangle_hit<kShadow>(p, e.lane(j), tmin, limit(), t, w) && hit(s.accel.bvh.prims[i + j], t))
+                if (triangle_hit<kShadow>(p, e.lane(j), tmin, limit(), t, w) &&
+                    hit(s.accel.bvh.prims[i + j], t,
+                        leaf_vertices + LeafVertices::at(first, size, i + j - first, 0, 0)))
                     return true;
             }
         }
@@ -226,7 +229,7 @@ inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint16_t 
         if (!triangles) {  // other shapes among them: one at a time
             for (int j = 0; j < n; ++j) {
                 Real t;
-                if (hit_prim<kCull, kShadow>(s, p, ids[j], tmin, limit(), t, w) && hit(ids[j], t)) return true;
+                if (hit_prim<kCull, kShadow>(s, p, ids[j], tmin, limit(), t, w) && hit(ids[j], t, nullptr)) return true;
             }
             continue;
         }
@@ -234,7 +237,7 @@ inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint16_t 
         for (int mask = edges4<kCull>(p, indexed_vertices4(s, p, ids, n), n, e); mask; mask &= mask - 1) {
             const int j = __builtin_ctz(mask);
             Real t;
-            if (triangle_hit<kShadow>(p, e.lane(j), tmin, limit(), t, w) && hit(ids[j], t)) return true;
+            if (triangle_hit<kShadow>(p, e.lane(j), tmin, limit(), t, w) && hit(ids[j], t, nullptr)) return true;
         }
     }
     return false;
@@ -247,7 +250,7 @@ inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint16_t 
     for (uint32_t i = first; i < end; ++i) {
         const uint32_t id = s.accel.bvh.prims[i];
         Real t;
-        if (hit_prim<kCull, kShadow>(s, p, id, tmin, limit(), t, w) && hit(id, t)) return true;
+        if (hit_prim<kCull, kShadow>(s, p, id, tmin, limit(), t, w) && hit(id, t, nullptr)) return true;
     }
     return false;
 }
@@ -270,12 +273,19 @@ bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
     // id: their range ends at nextafter(best_t), kept here as best_t changes (a libm
     // call per primitive test cost 3% of render time).
     Real prim_limit = tmax;
-    auto consider = [&](uint32_t gid, Real t) {
+    const float* best_corners = nullptr;
+    uint32_t best_stride = 0;
+    auto consider = [&](uint32_t gid, Real t, const float* corners, uint32_t stride) {
         // Ties in t go to the lower id, so the answer does not depend on the BVH.
         if (t < best_t || (t == best_t && gid < best_id)) {
             if (t != best_t) prim_limit = std::nextafter(t, Real(HUGE_VAL));
             best_t = t;
             best_id = gid;
+            best_corners = corners;
+            best_stride = stride;
+            // Shading reads the triangle's record: start loading it while the
+            // traversal goes on.
+            if (corners) __builtin_prefetch(&s.geometry.triangles[gid]);
             hit.w[0] = w[0];
             hit.w[1] = w[1];
             hit.w[2] = w[2];
@@ -299,8 +309,8 @@ bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
                 const uint32_t first = ~static_cast<uint32_t>(e.child);
                 test_leaf<kCull, false>(
                     s, p, first, e.count, tmin, [&] { return prim_limit; }, w,
-                    [&](uint32_t id, Real t) {
-                        consider(id, t);
+                    [&](uint32_t id, Real t, const float* corners) {
+                        consider(id, t, corners, Bvh4Node::leaf_size_of(e.count));
                         return false;
                     });
             } else {
@@ -340,13 +350,15 @@ bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
     for (size_t i = 0; i < planes.size(); ++i) {
         Real t;
         if (intersect_plane(ray, planes[i].point, planes[i].normal, tmin, prim_limit, t))
-            consider(base + static_cast<uint32_t>(i), t);
+            consider(base + static_cast<uint32_t>(i), t, nullptr, 0);
     }
     if (!found) return false;
     hit.t = best_t;
     const ShapeRef shape = s.geometry.shape_of(best_id);
     hit.kind = shape.kind;
     hit.index = shape.index;
+    hit.corners = best_corners;
+    hit.stride = best_stride;
     return true;
 }
 
@@ -381,7 +393,7 @@ bool any_hit(const Scene& s, const Ray& ray, Real tmin, Real tmax, uint32_t* occ
             const uint32_t first = ~static_cast<uint32_t>(child);
             if (test_leaf<false, true>(
                     s, p, first, count, tmin, [&] { return tmax; }, w,
-                    [&](uint32_t id, Real) {
+                    [&](uint32_t id, Real, const float*) {
                         if (occluder) *occluder = id;
                         return true;
                     }))
