@@ -444,8 +444,8 @@ void shoot(const rt::Scene& s, Checker& ck, Rng& rng, int rays, Real extent) {
 
 // How run_soup's mesh positions are given: as random doubles; rounded to float,
 // as a PLY mesh's are, so that leaves read them from Acceleration::leaf_vertices;
-// or rounded for three triangles in four, so that some leaves read the copy and
-// the others (Bvh4Node::kIndexedLeaf) their triangles' positions.
+// or rounded but for one coordinate in every fourth triangle, so that some leaves
+// read the copy and the others (Bvh4Node::kIndexedLeaf) their triangles' positions.
 enum class Vertices { kDouble, kFloat, kMixed };
 
 // Whether every coordinate of the leaf's primitives (prims[first, first + size))
@@ -501,9 +501,15 @@ void run_soup(const SoupSpec& spec, int rays, Vertices vertices = Vertices::kDou
     if (vertices != Vertices::kDouble)
         for (rt::MeshDesc& m : d.meshes)
             for (size_t i = 0; i < m.indices.size(); ++i) {
-                if (vertices == Vertices::kMixed && i / 3 % 4 == 0) continue;
                 Vec3& p = m.positions[m.indices[i]];
-                p = {to_float(p.x), to_float(p.y), to_float(p.z)};
+                // kMixed: every fourth triangle keeps one coordinate of one vertex as
+                // it is (x, y or z in turn), so that a check skipping one axis shows.
+                const size_t tri = i / 3;
+                const int keep = vertices == Vertices::kMixed && tri % 4 == 0 && i % 3 == tri / 4 % 3
+                                     ? static_cast<int>(tri / 12 % 3)
+                                     : -1;
+                for (int a = 0; a < 3; ++a)
+                    if (a != keep) p[a] = to_float(p[a]);
             }
     const rt::Scene s = rt::build_scene(std::move(d));
     check_structure(s);
