@@ -20,8 +20,8 @@ const char* ray_kind_name(RayKind kind);  // "camera", "reflection", ...
 
 // One point light at a shaded point (Integrator::local).
 struct LightTrace {
-    size_t light = 0;  // 0-based, in the scene's order
-    Real ndotl = 0;    // n.l with the outward shading normal
+    size_t light = 0;     // 0-based, in the scene's order
+    Real ndotl = 0;       // n.l with the outward shading normal
     bool facing = false;  // n.l above its rounding noise: the light counts at all
     // The shadow ray (never culled); not traced when the light is within 2 eps of the point.
     bool shadow_traced = false;
@@ -43,8 +43,8 @@ struct RayTrace {
     Ray ray;
     Real tmin = 0, tmax = 0;  // the interval searched
     bool cull = false;
-    int medium = -1;  // the dielectric material it travels inside, or -1
-    Real weight = 1;  // what its radiance is multiplied by in the pixel
+    int medium = -1;       // the dielectric material it travels inside, or -1
+    Real weight = 1;       // what its radiance is multiplied by in the pixel
     Vec3 factor{1, 1, 1};  // what the parent multiplies its radiance by
     bool pruned = false;   // weight below the integrator's threshold: not traced
 
@@ -88,8 +88,7 @@ struct PixelTrace {
 };
 
 // Traces pixel (x, y) of camera `camera` (0-based; both in range) as render() does.
-PixelTrace trace_pixel(const Scene& scene, size_t camera, int x, int y, const TraceOptions& options,
-                       Rounding rounding);
+PixelTrace trace_pixel(const Scene& scene, size_t camera, int x, int y, const TraceOptions& options, Rounding rounding);
 
 // The tree as indented text, and as JSON (numbers as %.17g; the 8-bit value at the top
 // as "pixel": [r, g, b]).

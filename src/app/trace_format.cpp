@@ -61,8 +61,7 @@ public:
         if (r.medium >= 0) head += ", inside material " + material_id(scene_, size_t(r.medium));
         line(indent, head);
         const int in = indent + 1;
-        if (r.culled)
-            line(in, "back face culled: " + scene_.names.name(r.culled_shape) + " at t = " + num(r.culled_t));
+        if (r.culled) line(in, "back face culled: " + scene_.names.name(r.culled_shape) + " at t = " + num(r.culled_t));
         if (!r.hit) {
             line(in, "miss");
             line(in, "returns " + vec(r.radiance));
@@ -107,8 +106,8 @@ public:
             s += ", shadowed";
             if (l.occluder_found) s += " by " + scene_.names.name(l.occluder) + " at t = " + num(l.occluder_t);
         } else {
-            s += ", lit, I/d^2 " + vec(l.irradiance) + ", diffuse " + vec(l.diffuse) + ", specular " +
-                 vec(l.specular) + " (n.h = " + num(l.ndoth) + ")";
+            s += ", lit, I/d^2 " + vec(l.irradiance) + ", diffuse " + vec(l.diffuse) + ", specular " + vec(l.specular) +
+                 " (n.h = " + num(l.ndoth) + ")";
         }
         line(indent, s);
         if (l.shadow_traced)
@@ -237,9 +236,8 @@ std::string jnode(const Scene& scene, const RayTrace& r) {
                     .field("total_internal_reflection", jbool(r.tir));
             o.field("fresnel", f.done());
         }
-        o.field("beer",
-                r.beer ? Object().field("distance", jnum(r.t)).field("attenuation", jvec(r.attenuation)).done()
-                       : "null");
+        o.field("beer", r.beer ? Object().field("distance", jnum(r.t)).field("attenuation", jvec(r.attenuation)).done()
+                               : "null");
         o.field("depth_limit", jbool(r.depth_limit));
     } else {
         o.field("hit", "null");
