@@ -51,8 +51,8 @@ std::vector<std::string> official_scenes() {
     return out;
 }
 
-#define SKIP_WITHOUT_SHARED(scenes)                                                                    \
-    if ((scenes).empty())                                                                              \
+#define SKIP_WITHOUT_SHARED(scenes)                                                                     \
+    if ((scenes).empty())                                                                               \
     GTEST_SKIP() << "*** SKIPPED: the course's shared folder (or its MANIFEST.tsv) was not found; set " \
                     "RT_SHARED_DIR ***"
 
@@ -273,7 +273,8 @@ TEST(Trace, UsageErrorsExitTwoAndWriteNothing) {
         {{"--trace", "-1,0", "prism.json"}, "--trace X needs a whole number from 0 to 1073741824, got '-1'"},
         {{"--trace", "3", "prism.json"}, "--trace needs X,Y, got '3'"},
         {{"--trace", "1,1", "--camera", "2", "prism.json"}, "--camera 2: prism.json has 1 camera"},
-        {{"--trace", "1,1", "--camera", "0", "prism.json"}, "--camera needs a whole number from 1 to 1073741824, got '0'"},
+        {{"--trace", "1,1", "--camera", "0", "prism.json"},
+         "--camera needs a whole number from 1 to 1073741824, got '0'"},
         {{"--camera", "1", "prism.json"}, "--camera and --trace-json need --trace"},
         {{"--trace-json", "t.json", "prism.json"}, "--camera and --trace-json need --trace"},
         {{"--trace", "1,1", "prism.json", "prism.json"}, "--trace takes one scene file"},
@@ -296,7 +297,8 @@ TEST(Trace, BadSceneIsBadInput) {
     write_text(tmp / "bad.json", j.dump());
     const RunResult r = run_raytracer({"--trace", "0,0", tmp / "bad.json"});
     EXPECT_EQ(r.exit_code, 1) << dump(r);
-    EXPECT_EQ(r.err, tmp / "bad.json" + ": /Scene/Objects/Mesh/Material: material id 5 does not exist (1 materials defined)\n")
+    EXPECT_EQ(r.err,
+              tmp / "bad.json" + ": /Scene/Objects/Mesh/Material: material id 5 does not exist (1 materials defined)\n")
         << dump(r);
     EXPECT_EQ(r.out, "");
 }
