@@ -234,18 +234,29 @@ TEST_F(RtdiffTool, UsageErrorsExitTwo) {
     }
 }
 
+namespace {
+
+// Folders a and b: same.png identical, `one` one pixel off by 2, many.png 5% of its
+// pixels off, only_a.png and only_b.ppm on one side.
+void write_folders(const rt::Image& a_img, const rt::Image& b_img, const TempDir& a, const TempDir& b,
+                   const std::string& one) {
+    rt::Image big = a_img;
+    for (int x = 0; x < 10; ++x) at(big, x, 0, 2) ^= 0x80;
+    rt::write_png(a_img, a / "same.png");
+    rt::write_png(a_img, b / "same.png");
+    rt::write_png(a_img, a / one);
+    rt::write_png(b_img, b / one);
+    rt::write_png(a_img, a / "many.png");
+    rt::write_png(big, b / "many.png");
+    rt::write_png(a_img, a / "only_a.png");
+    rt::write_ppm(a_img, b / "only_b.ppm");
+}
+
+}  // namespace
+
 TEST_F(RtdiffTool, FoldersCompareByNameWorstFirst) {
     TempDir a, b;
-    rt::Image big = a_;
-    for (int x = 0; x < 10; ++x) at(big, x, 0, 2) ^= 0x80;
-    rt::write_png(a_, a / "same.png");
-    rt::write_png(a_, b / "same.png");
-    rt::write_png(a_, a / "one.png");
-    rt::write_png(b_, b / "one.png");
-    rt::write_png(a_, a / "many.png");
-    rt::write_png(big, b / "many.png");
-    rt::write_png(a_, a / "only_a.png");
-    rt::write_ppm(a_, b / "only_b.ppm");
+    write_folders(a_, b_, a, b, "one.png");
     write_text(a / "notes.txt", "not an image, not listed\n");
     const RunResult r = run_program(rtdiff_path(), {a.path(), b.path()});
     EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -265,6 +276,8 @@ TEST_F(RtdiffTool, FoldersCompareByNameWorstFirst) {
     EXPECT_EQ(over.exit_code, 1);
     EXPECT_TRUE(contains(over.out, "1 over --fail-above")) << over.out;
 }
+
+namespace {
 
 // The %XX escapes of a URL path decoded.
 std::string url_decode(const std::string& u) {
@@ -291,18 +304,11 @@ std::vector<std::string> attributes(const std::string& page, const std::string& 
     return out;
 }
 
+}  // namespace
+
 TEST_F(RtdiffTool, HtmlPageListsWorstFirstAndLinksExistingFiles) {
     TempDir a, b;
-    rt::Image big = a_;
-    for (int x = 0; x < 10; ++x) at(big, x, 0, 2) ^= 0x80;
-    rt::write_png(a_, a / "same.png");
-    rt::write_png(a_, b / "same.png");
-    rt::write_png(a_, a / "one off.png");  // a space: the links must be encoded
-    rt::write_png(b_, b / "one off.png");
-    rt::write_png(a_, a / "many.png");
-    rt::write_png(big, b / "many.png");
-    rt::write_png(a_, a / "only_a.png");
-    rt::write_ppm(a_, b / "only_b.ppm");
+    write_folders(a_, b_, a, b, "one off.png");  // a space: the links must be encoded
     const RunResult r = run({"--html", "page", a.path(), b.path()});
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const std::string page = read_text(tmp_ / "page/index.html");

@@ -13,6 +13,21 @@ namespace rt {
 
 enum class MaterialType { Plain, Mirror, Conductor, Dielectric };
 
+// The type's `_type` word ("plain" for Plain, which has none).
+inline const char* material_type_name(MaterialType t) {
+    switch (t) {
+        case MaterialType::Plain:
+            return "plain";
+        case MaterialType::Mirror:
+            return "mirror";
+        case MaterialType::Conductor:
+            return "conductor";
+        case MaterialType::Dielectric:
+            return "dielectric";
+    }
+    return "plain";
+}
+
 struct MaterialDesc {
     MaterialType type = MaterialType::Plain;
     Vec3 ambient, diffuse, specular;

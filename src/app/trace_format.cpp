@@ -18,20 +18,6 @@ std::string num(Real v) {
 
 std::string vec(Vec3 v) { return "(" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + ")"; }
 
-const char* material_type_name(MaterialType t) {
-    switch (t) {
-        case MaterialType::Plain:
-            return "plain";
-        case MaterialType::Mirror:
-            return "mirror";
-        case MaterialType::Conductor:
-            return "conductor";
-        case MaterialType::Dielectric:
-            return "dielectric";
-    }
-    return "?";
-}
-
 // The material's _id (its 1-based position for scenes built in code).
 std::string material_id(const Scene& scene, size_t index) {
     const std::string& id = scene.setup.materials[index].id;

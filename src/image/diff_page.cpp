@@ -57,7 +57,8 @@ std::string fmt(const char* format, double v) {
 
 // An image with its caption, or a note when there is none.
 std::string figure(const std::string& link, const std::string& caption) {
-    if (link.empty()) return "<figure><div class=none>no image</div><figcaption>" + html(caption) + "</figcaption></figure>";
+    if (link.empty())
+        return "<figure><div class=none>no image</div><figcaption>" + html(caption) + "</figcaption></figure>";
     return "<figure><a href=\"" + url(link) + "\"><img src=\"" + url(link) + "\" alt=\"" + html(caption) +
            "\"></a><figcaption>" + html(caption) + "</figcaption></figure>";
 }
