@@ -97,8 +97,8 @@ public:
         }
         line(indent, s);
         if (l.shadow_traced)
-            line(indent + 1, "shadow ray: origin " + vec(l.shadow.org) + ", direction " + vec(l.shadow.dir) +
-                                 ", t in (0, " + num(l.shadow_tmax) + ")");
+            line(indent + 1, std::string(ray_kind_name(RayKind::Shadow)) + " ray: origin " + vec(l.shadow.org) +
+                                 ", direction " + vec(l.shadow.dir) + ", t in (0, " + num(l.shadow_tmax) + ")");
         else
             line(indent + 1, "no shadow ray (the light is within 2 ShadowRayEpsilon)");
     }
@@ -154,8 +154,9 @@ private:
     std::string out_;
 };
 
-std::string jray(const Ray& r, Real tmax) {
+std::string jshadow_ray(const Ray& r, Real tmax) {
     return Object()
+        .field("kind", jstr(ray_kind_name(RayKind::Shadow)))
         .field("origin", jvec(r.org))
         .field("direction", jvec(r.dir))
         .field("tmin", "0")
@@ -171,7 +172,7 @@ std::string jlight(const Scene& scene, const LightTrace& l) {
     Object o;
     o.field("light", std::to_string(l.light + 1)).field("n_dot_l", jnum(l.ndotl)).field("facing", jbool(l.facing));
     if (!l.facing) return o.done();
-    o.field("shadow_ray", l.shadow_traced ? jray(l.shadow, l.shadow_tmax) : "null");
+    o.field("shadow_ray", l.shadow_traced ? jshadow_ray(l.shadow, l.shadow_tmax) : "null");
     o.field("shadowed", jbool(l.shadowed));
     o.field("occluder", l.shadowed && l.occluder_found ? jshape(scene, l.occluder, l.occluder_t) : "null");
     if (!l.shadowed) {

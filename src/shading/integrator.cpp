@@ -31,13 +31,22 @@ struct Integrator {
     TraceCache* cache;  // may be null
     RayCounts& rays;    // the cache's counts, or a throwaway
 
-    // The nearest primitive in (0, tmax) without culling, for a recorded tree only.
-    bool nearest_unculled(const Ray& ray, Real tmax, ShapeRef& shape, Real& t) const {
+    // For a recorded tree only: the nearest primitive in (tmin, tmax) without culling.
+    bool nearest_unculled(const Ray& ray, Real tmin, Real tmax, ShapeRef& shape, Real& t) const {
         Hit h;
-        if (!closest_hit(s, ray, 0, tmax, false, h)) return false;
+        if (!closest_hit(s, ray, tmin, tmax, false, h)) return false;
         shape = {h.kind, h.index};
         t = h.t;
         return true;
+    }
+
+    // For a recorded tree only: the nearest occluder of a shadow ray that any_hit counts.
+    // A closest hit any_hit does not see (a t within rounding error of 0, which shadow
+    // rays ignore: intersect_triangle's kShadow) is passed over.
+    bool nearest_occluder(const Ray& ray, Real tmax, ShapeRef& shape, Real& t) const {
+        for (Real from = 0; nearest_unculled(ray, from, tmax, shape, t); from = t)
+            if (any_hit(s, ray, 0, std::nextafter(t, Real(HUGE_VAL)))) return true;
+        return false;
     }
 
     // Ambient + Blinn-Phong diffuse and specular from every unshadowed point light.
@@ -89,7 +98,7 @@ struct Integrator {
                     if (lt) {
                         lt->shadowed = true;
                         lt->occluder_found =
-                            nearest_unculled(lt->shadow, lt->shadow_tmax, lt->occluder, lt->occluder_t);
+                            nearest_occluder(lt->shadow, lt->shadow_tmax, lt->occluder, lt->occluder_t);
                     }
                     continue;
                 }
@@ -250,7 +259,7 @@ struct Integrator {
             rec.shape = {h.kind, h.index};
             rec.t = h.t;
         }
-        if (cull) rec.culled = nearest_unculled(ray, hit ? h.t : HUGE_VAL, rec.culled_shape, rec.culled_t);
+        if (cull) rec.culled = nearest_unculled(ray, 0, hit ? h.t : HUGE_VAL, rec.culled_shape, rec.culled_t);
     }
 };
 
