@@ -262,6 +262,37 @@ TEST(Trace, LightsAreReportedLitOrShadowedByTheirOccluder) {
     EXPECT_TRUE(contains(r.out, "shadowed by Sphere 8 at t = ")) << dump(r);
 }
 
+TEST(Trace, ABackFaceTheCameraRayPassesOverIsReported) {
+    // A triangle at z = 2 wound clockwise seen from the camera (its front faces -z), in front
+    // of a plane at z = 0: culled, the camera ray passes it (t = 3) and hits the plane (t = 5).
+    const char* scene = R"({"Scene": {
+      "Cameras": {"Camera": {"Position": "0 0 5", "Gaze": "0 0 -1", "Up": "0 1 0",
+        "NearPlane": "-0.1 0.1 -0.1 0.1", "NearDistance": "1", "ImageResolution": "3 3", "ImageName": "c.png"}},
+      "Materials": {"Material": {"AmbientReflectance": "1 1 1"}},
+      "Lights": {"AmbientLight": "10 10 10"},
+      "VertexData": {"_data": "0 0 0  -1 -1 2  0 1 2  1 -1 2", "_type": "xyz"},
+      "Objects": {"Triangle": {"_id": "5", "Material": "1", "Indices": "2 3 4"},
+                  "Plane": {"_id": "2", "Material": "1", "Point": "1", "Normal": "0 0 1"}}}})";
+    TempDir tmp;
+    write_text(tmp / "c.json", scene);
+    const RunResult culled = run_raytracer({"--trace", "1,1", "--trace-json", tmp / "a.json", tmp / "c.json"});
+    ASSERT_EQ(culled.exit_code, 0) << dump(culled);
+    const json a = json::parse(read_text(tmp / "a.json"));
+    EXPECT_EQ(a["ray"]["hit"]["object"], "Plane 2");
+    EXPECT_NEAR(a["ray"]["hit"]["t"].get<double>(), 5, 1e-12);
+    EXPECT_EQ(a["ray"]["culled"]["object"], "Triangle 5");
+    EXPECT_NEAR(a["ray"]["culled"]["t"].get<double>(), 3, 1e-12);
+    EXPECT_TRUE(contains(culled.out, "back face culled: Triangle 5 at t = 3")) << dump(culled);
+    const RunResult all =
+        run_raytracer({"--no-cull", "--trace", "1,1", "--trace-json", tmp / "b.json", tmp / "c.json"});
+    ASSERT_EQ(all.exit_code, 0) << dump(all);
+    const json b = json::parse(read_text(tmp / "b.json"));
+    EXPECT_EQ(b["ray"]["hit"]["object"], "Triangle 5");
+    EXPECT_EQ(b["ray"]["hit"]["front"], false);
+    EXPECT_EQ(b["ray"]["cull"], false);
+    EXPECT_TRUE(b["ray"]["culled"].is_null());
+}
+
 // ---- Usage errors -----------------------------------------------------------------------
 
 TEST(Trace, UsageErrorsExitTwoAndWriteNothing) {
