@@ -1,5 +1,5 @@
 // raytracer: reads the command line, renders every camera of each scene file
-// (rt::run_scenes) and writes --stats.
+// (rt::run_scenes) and writes --stats; or traces one pixel (--trace, rt::run_trace).
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -15,7 +15,8 @@ namespace {
 const rt::cli::Program kProgram{
     "raytracer", "raytracer 1.0",
     "usage: raytracer [-o DIR] [-j N] [--cull|--no-cull] [--rounding truncate|nearest] [--stats FILE] [-q] "
-    "scene.json|scene.xml...",
+    "scene.json|scene.xml...\n"
+    "       raytracer --trace X,Y [--camera N] [--trace-json FILE] [options] scene.json|scene.xml",
     "Renders every camera of each scene file (JSON, or the course's older XML format when the\n"
     "name ends in .xml) to the image its ImageName names: PNG (.png) or binary PPM (.ppm).\n",
     "exit status: 0 all images written, 1 bad input or an image could not be written, 2 usage error"};
@@ -27,6 +28,8 @@ int main(int argc, char** argv) {
     rt::RunOptions o;
     std::vector<std::string> scenes;
     std::string stats_path;
+    rt::PixelTraceRequest request;
+    bool trace = false, camera_given = false;
     CLI::App app;
     cli::setup(app, kProgram);
     app.add_option("-o,--output-dir", o.output_dir, "write relative image names under DIR (created if needed)")
@@ -38,6 +41,22 @@ int main(int argc, char** argv) {
                     {{"truncate", rt::Rounding::Truncate}, {"nearest", rt::Rounding::Nearest}});
     cli::add_text(app, "--stats", "FILE", "write figures per image (times, rays by kind, BVH, memory) to FILE as JSON",
                   stats_path, "a file name");
+    cli::add_value(app, "--trace", "X,Y",
+                   "print the ray tree of pixel X,Y (column, row from the top left); render nothing",
+                   [&trace, &request](const std::string& v) {
+                       const size_t comma = v.find(',');
+                       if (comma == std::string::npos) cli::usage_error("--trace needs X,Y, got '" + v + "'");
+                       request.x = int(cli::whole_number("--trace X", v.substr(0, comma), 0, 1 << 30));
+                       request.y = int(cli::whole_number("--trace Y", v.substr(comma + 1), 0, 1 << 30));
+                       trace = true;
+                   });
+    cli::add_value(app, "--camera", "N", "--trace: the camera (1-based, default 1)",
+                   [&request, &camera_given](const std::string& v) {
+                       request.camera = size_t(cli::whole_number("--camera", v, 1, 1 << 30));
+                       camera_given = true;
+                   });
+    cli::add_text(app, "--trace-json", "FILE", "--trace: also write the ray tree to FILE as JSON", request.json_path,
+                  "a file name");
     app.add_flag("-q,--quiet", o.quiet, "print errors only (and no progress line, which is shown only on a terminal)");
     app.option_defaults()->group("for measurements (the defaults are the scene's values and the tuned BVH)");
     cli::add_whole(app, "--max-depth", "N", "override every scene's MaxRecursionDepth (0..10000)", o.max_depth, 0,
@@ -56,10 +75,21 @@ int main(int argc, char** argv) {
                    "4 with AVX2)",
                    o.bvh.block, 1, 16);
     app.add_option("scenes", scenes);
-    app.final_callback([&scenes] {
+    app.final_callback([&] {
         if (scenes.empty()) cli::usage_error("no scene file given");
+        if (trace && scenes.size() > 1) cli::usage_error("--trace takes one scene file");
+        if (!trace && (camera_given || !request.json_path.empty()))
+            cli::usage_error("--camera and --trace-json need --trace");
     });
     if (const auto status = cli::parse(app, kProgram, argc, argv)) return *status;
+
+    if (trace) {
+        try {
+            return rt::run_trace(scenes[0], o, request);
+        } catch (const rt::UsageError& e) {
+            return cli::report_usage_error(kProgram, e.what());
+        }
+    }
 
     const rt::RunReport report = rt::run_scenes(scenes, o);
     bool ok = report.ok;

@@ -303,7 +303,8 @@ TEST(Cli, UsageErrorsAreOneLinePlusTheUsage) {
     write_scene(tmp.path(), "scene.json", sample_scene());
     const std::string usage =
         "usage: raytracer [-o DIR] [-j N] [--cull|--no-cull] [--rounding truncate|nearest] [--stats FILE] [-q] "
-        "scene.json|scene.xml...";
+        "scene.json|scene.xml...\n"
+        "       raytracer --trace X,Y [--camera N] [--trace-json FILE] [options] scene.json|scene.xml";
     const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
         {{"--no-such-option", "scene.json"}, "unknown option '--no-such-option'"},
         {{"-j", "many", "scene.json"}, "--threads needs a whole number from 1 to 1024, got 'many'"},
@@ -330,10 +331,10 @@ TEST(Cli, HelpNamesEveryOption) {
     RunResult r = run_raytracer({"--help"});
     ASSERT_EQ(r.exit_code, 0) << dump(r);
     EXPECT_EQ(r.err, "");
-    for (const char* option :
-         {"-o, --output-dir DIR", "-j, --threads N", "--cull, --no-cull", "--rounding MODE", "--stats FILE",
-          "-q, --quiet", "-h, --help", "--version", "--max-depth N", "--epsilon-scale F", "--bvh-leaf N",
-          "--bvh-bins N", "--bvh-split MODE", "--bvh-cost F", "--bvh-block N", "exit status"})
+    for (const char* option : {"-o, --output-dir DIR", "-j, --threads N", "--cull, --no-cull", "--rounding MODE",
+                               "--stats FILE", "-q, --quiet", "-h, --help", "--version", "--max-depth N",
+                               "--epsilon-scale F", "--bvh-leaf N", "--bvh-bins N", "--bvh-split MODE", "--bvh-cost F",
+                               "--bvh-block N", "--trace X,Y", "--camera N", "--trace-json FILE", "exit status"})
         EXPECT_TRUE(contains(r.out, option)) << option << dump(r);
     RunResult v = run_raytracer({"--version"});
     EXPECT_EQ(v.out, "raytracer 1.0\n") << dump(v);

@@ -234,18 +234,29 @@ TEST_F(RtdiffTool, UsageErrorsExitTwo) {
     }
 }
 
+namespace {
+
+// Folders a and b: same.png identical, `one` one pixel off by 2, many.png 5% of its
+// pixels off, only_a.png and only_b.ppm on one side.
+void write_folders(const rt::Image& a_img, const rt::Image& b_img, const TempDir& a, const TempDir& b,
+                   const std::string& one) {
+    rt::Image big = a_img;
+    for (int x = 0; x < 10; ++x) at(big, x, 0, 2) ^= 0x80;
+    rt::write_png(a_img, a / "same.png");
+    rt::write_png(a_img, b / "same.png");
+    rt::write_png(a_img, a / one);
+    rt::write_png(b_img, b / one);
+    rt::write_png(a_img, a / "many.png");
+    rt::write_png(big, b / "many.png");
+    rt::write_png(a_img, a / "only_a.png");
+    rt::write_ppm(a_img, b / "only_b.ppm");
+}
+
+}  // namespace
+
 TEST_F(RtdiffTool, FoldersCompareByNameWorstFirst) {
     TempDir a, b;
-    rt::Image big = a_;
-    for (int x = 0; x < 10; ++x) at(big, x, 0, 2) ^= 0x80;
-    rt::write_png(a_, a / "same.png");
-    rt::write_png(a_, b / "same.png");
-    rt::write_png(a_, a / "one.png");
-    rt::write_png(b_, b / "one.png");
-    rt::write_png(a_, a / "many.png");
-    rt::write_png(big, b / "many.png");
-    rt::write_png(a_, a / "only_a.png");
-    rt::write_ppm(a_, b / "only_b.ppm");
+    write_folders(a_, b_, a, b, "one.png");
     write_text(a / "notes.txt", "not an image, not listed\n");
     const RunResult r = run_program(rtdiff_path(), {a.path(), b.path()});
     EXPECT_EQ(r.exit_code, 0) << r.err;
@@ -264,6 +275,72 @@ TEST_F(RtdiffTool, FoldersCompareByNameWorstFirst) {
     const RunResult over = run_program(rtdiff_path(), {"--fail-above", "1", a.path(), b.path()});
     EXPECT_EQ(over.exit_code, 1);
     EXPECT_TRUE(contains(over.out, "1 over --fail-above")) << over.out;
+}
+
+namespace {
+
+// The %XX escapes of a URL path decoded.
+std::string url_decode(const std::string& u) {
+    std::string out;
+    for (size_t i = 0; i < u.size(); ++i) {
+        if (u[i] == '%' && i + 2 < u.size()) {
+            out += char(std::stoi(u.substr(i + 1, 2), nullptr, 16));
+            i += 2;
+        } else {
+            out += u[i];
+        }
+    }
+    return out;
+}
+
+// Every value of attribute `attr` ("src", "href") in `page`.
+std::vector<std::string> attributes(const std::string& page, const std::string& attr) {
+    std::vector<std::string> out;
+    const std::string key = attr + "=\"";
+    for (size_t at = page.find(key); at != std::string::npos; at = page.find(key, at + 1)) {
+        const size_t begin = at + key.size();
+        out.push_back(page.substr(begin, page.find('"', begin) - begin));
+    }
+    return out;
+}
+
+}  // namespace
+
+TEST_F(RtdiffTool, HtmlPageListsWorstFirstAndLinksExistingFiles) {
+    TempDir a, b;
+    write_folders(a_, b_, a, b, "one off.png");  // a space: the links must be encoded
+    const RunResult r = run({"--html", "page", a.path(), b.path()});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::string page = read_text(tmp_ / "page/index.html");
+    // The summary table, worst first.
+    const size_t table = page.find("<table"), table_end = page.find("</table>");
+    ASSERT_NE(table, std::string::npos);
+    const size_t many = page.find(">many.png<", table), one = page.find(">one off.png<", table),
+                 same = page.find(">same.png<", table);
+    EXPECT_LT(many, one);
+    EXPECT_LT(one, same);
+    EXPECT_LT(same, table_end);
+    EXPECT_NE(page.find("only in A: only_a.png"), std::string::npos);
+    EXPECT_NE(page.find("only in B: only_b.ppm"), std::string::npos);
+    // Three images per compared pair (A, B, heatmap), every link a file that exists.
+    const std::vector<std::string> srcs = attributes(page, "src");
+    EXPECT_EQ(srcs.size(), 9u);
+    std::vector<std::string> links = srcs;
+    for (const std::string& h : attributes(page, "href"))
+        if (h.rfind("#", 0) != 0) links.push_back(h);
+    for (const std::string& l : links) {
+        EXPECT_EQ(l.find(' '), std::string::npos) << l;
+        EXPECT_TRUE(file_exists(tmp_ / "page/" + url_decode(l))) << l;
+    }
+    // The heatmap is the one rt::diff_heatmap draws.
+    rt::Image h;
+    ASSERT_TRUE(load_png(tmp_ / "page/heatmaps/one off.png", h));
+    EXPECT_EQ(h.rgb, rt::diff_heatmap(a_, b_).rgb);
+    // Two images: --html is a usage error.
+    const RunResult files = run({"--html", "p2", "a.png", "b.png"});
+    EXPECT_EQ(files.exit_code, 2);
+    EXPECT_EQ(split_lines(files.err).at(0), "rtdiff: --html needs two folders");
+    EXPECT_FALSE(file_exists(tmp_ / "p2"));
 }
 
 TEST_F(RtdiffTool, AFolderAndAFileIsBadInput) {

@@ -93,6 +93,10 @@ CLI::Option* add_choice(CLI::App& app, const std::string& names, const std::stri
                      });
 }
 
+// Prints a usage error found after parsing ("<program>: <message>" and the usage line,
+// as parse() does) and returns its exit status, 2.
+int report_usage_error(const Program& p, const std::string& message);
+
 // Parses the command line into `app`. nullopt: the program goes on; otherwise --help,
 // --version or a usage error has been printed and this is the exit status.
 std::optional<int> parse(CLI::App& app, const Program& p, int argc, char** argv);

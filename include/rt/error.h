@@ -12,4 +12,11 @@ public:
     explicit InputError(const std::string& msg) : std::runtime_error(msg) {}
 };
 
+// A command line that asks for something its input does not have (a pixel outside the
+// image, a camera the scene lacks): the program reports it as a usage error (exit 2).
+class UsageError : public std::runtime_error {
+public:
+    explicit UsageError(const std::string& msg) : std::runtime_error(msg) {}
+};
+
 }  // namespace rt

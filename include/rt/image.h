@@ -17,7 +17,11 @@ struct Image {
     std::vector<uint8_t> rgb;  // row-major, top row first, 3 bytes per pixel
 };
 
-// Clamps each channel to [0, 255] and quantises it; NaN becomes 0.
+// A channel clamped to [0, 255]; NaN becomes 0.
+Real clamp_channel(Real value);
+
+// clamp_channel, then to an integer as `rounding` says: the one conversion of radiance
+// to an 8-bit channel (images and --trace).
 uint8_t quantize(Real value, Rounding rounding);
 
 // Writes a PNG atomically (write_file_atomic, rt/atomic_file.h): to a temporary name

@@ -3,6 +3,7 @@
 #pragma once
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include "rt/image.h"
 
@@ -35,6 +36,27 @@ ImageComparison compare_images(const Image& a, const Image& b, int tolerance = 1
 // show where one is), d within the tolerance dark blue, d above it yellow (just over)
 // to red (64 levels or more over). Requires same-size images (compare_images().same_size).
 Image diff_heatmap(const Image& a, const Image& b, int tolerance = 1);
+
+// "39.18 dB", or "inf" for identical images.
+std::string psnr_text(double psnr);
+// "x 0..799 y 0..798" (ImageComparison's box), or "none".
+std::string box_text(const ImageComparison& c);
+
+// One image of a folder comparison, as the --html page shows it. The links are relative
+// to the page (URL-encoded by diff_page_html); empty when there is no such file.
+struct DiffPageRow {
+    std::string name;
+    ImageComparison c;
+    std::string error;  // not empty: the pair could not be compared (sizes, unreadable)
+    std::string a_link, b_link, heatmap_link;
+};
+
+// The HTML page of a folder comparison (rtdiff --html): a table of every row in the
+// order given (rtdiff: worst first), then per row the two images and the heatmap side
+// by side, then the images found in one folder only. `a_label`, `b_label`: the folders.
+std::string diff_page_html(const std::string& a_label, const std::string& b_label, int tolerance,
+                           const std::vector<DiffPageRow>& rows, const std::vector<std::string>& only_a,
+                           const std::vector<std::string>& only_b);
 
 // Reads a PNG or PPM (anything stb_image reads) as 8-bit RGB. Throws rt::InputError
 // "<path>: <what>" when it cannot (no such file, a folder, not an image).

@@ -69,6 +69,19 @@ struct RunReport {
 // line per image unless `quiet`, one line per error.
 RunReport run_scenes(const std::vector<std::string>& scene_paths, const RunOptions& options);
 
+// raytracer --trace X,Y [--camera N] [--trace-json FILE]: one pixel's ray tree instead of images.
+struct PixelTraceRequest {
+    int x = 0, y = 0;       // column from the left, row from the top (>= 0)
+    size_t camera = 1;      // 1-based
+    std::string json_path;  // "": no JSON
+};
+
+// Loads and builds `scene_path` as run_scenes does (the same options and overrides),
+// traces the pixel (rt/trace.h), prints the tree on stdout and writes the JSON file.
+// Returns 0, or 1 for bad input or an unwritable JSON file (its line printed); throws
+// UsageError when the camera or the pixel is not in the scene.
+int run_trace(const std::string& scene_path, const RunOptions& options, const PixelTraceRequest& request);
+
 // The --stats document: {"raytracer": version, "precision", "machine": {...}, "images": [...]}.
 std::string stats_json(const std::vector<ImageRecord>& images, const std::string& version);
 

@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <iterator>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -274,11 +275,30 @@ struct BuildReport {
     size_t degenerate_triangles = 0;  // skipped (spec 2.10)
 };
 
+// What the scene file calls each primitive (--trace names hits by it): one entry per
+// Objects/Mesh or Objects/Triangle in triangle order, and the spheres' and planes' _ids.
+struct ShapeNames {
+    struct Mesh {
+        uint32_t first_triangle = 0;    // its first triangle in Geometry::triangles
+        bool triangle_object = false;   // an Objects/Triangle (one face)
+        std::string id;                 // MeshDesc::id
+        std::vector<uint32_t> skipped;  // its degenerate faces, not in Geometry (spec 2.10), ascending
+    };
+    std::vector<Mesh> meshes;
+    std::vector<std::string> spheres, planes;
+
+    // "Mesh 3, face 1207" (the face's 0-based index in the mesh's PLY or _data, skipped
+    // faces counted), "Triangle 4", "Sphere 2", "Plane 1"; "triangle #i" (etc.) for a
+    // primitive without a name (scenes built in code).
+    std::string name(ShapeRef s) const;
+};
+
 struct Scene {
     SceneSetup setup;
     Geometry geometry;
     Acceleration accel;
     BuildReport report;
+    ShapeNames names;
 };
 
 // Closest hit in (tmin, tmax). With `cull`, triangles whose geometric normal

@@ -13,6 +13,21 @@ namespace rt {
 
 enum class MaterialType { Plain, Mirror, Conductor, Dielectric };
 
+// The type's `_type` word ("plain" for Plain, which has none).
+inline const char* material_type_name(MaterialType t) {
+    switch (t) {
+        case MaterialType::Plain:
+            return "plain";
+        case MaterialType::Mirror:
+            return "mirror";
+        case MaterialType::Conductor:
+            return "conductor";
+        case MaterialType::Dielectric:
+            return "dielectric";
+    }
+    return "plain";
+}
+
 struct MaterialDesc {
     MaterialType type = MaterialType::Plain;
     Vec3 ambient, diffuse, specular;
@@ -21,6 +36,7 @@ struct MaterialDesc {
     Real refraction_index = 1;    // conductors and dielectrics
     Real absorption_index = 0;    // conductors: imaginary part k of the complex index
     Vec3 absorption_coefficient;  // dielectrics: Beer's law c, per unit distance
+    std::string id;               // its _id, for --trace
 };
 
 struct CameraDesc {
@@ -45,17 +61,23 @@ struct MeshDesc {
     std::vector<Vec3> positions;
     std::vector<uint32_t> indices;  // 3 per triangle
     std::string source;             // where the faces came from, for messages
+    // What the scene file calls it (--trace): an Objects/Mesh, or an Objects/Triangle
+    // (one face), and its _id as written (its 1-based position among its kind without one).
+    bool triangle_object = false;
+    std::string id;
 };
 
 struct SphereDesc {
     uint32_t material = 0;
     Vec3 center;
     Real radius = 1;
+    std::string id;  // as MeshDesc::id
 };
 
 struct PlaneDesc {
     uint32_t material = 0;
     Vec3 point, normal;
+    std::string id;  // as MeshDesc::id
 };
 
 struct SceneDesc {

@@ -8,6 +8,7 @@
 namespace rt {
 
 struct Scene;
+struct RayTrace;
 
 // Unpolarised Fresnel reflectance of a dielectric interface, light arriving from
 // the side with index eta_i at cos_i = cos(angle to the normal) in [0, 1].
@@ -54,7 +55,9 @@ struct TraceCache {
 };
 
 // Radiance (in 0..255 units, unclamped) arriving at the camera along a primary ray.
-Vec3 trace_primary(const Scene& scene, const Ray& ray, const TraceOptions& options, TraceCache* cache = nullptr);
+// `record`, when given, receives the ray tree (rt/trace.h); renders pass none.
+Vec3 trace_primary(const Scene& scene, const Ray& ray, const TraceOptions& options, TraceCache* cache = nullptr,
+                   RayTrace* record = nullptr);
 
 // x^e for the Blinn-Phong lobe: whole exponents up to 1024 by repeated squaring
 // (exact to a few ulps, several times faster than std::pow), others by std::pow.

@@ -12,10 +12,12 @@
 #include <utility>
 
 #include "progress.h"
+#include "rt/atomic_file.h"
 #include "rt/error.h"
 #include "rt/image.h"
 #include "rt/loader.h"
 #include "rt/scene.h"
+#include "rt/trace.h"
 
 namespace rt {
 
@@ -161,6 +163,32 @@ RunReport run_scenes(const std::vector<std::string>& scene_paths, const RunOptio
     RunReport report;
     for (const std::string& path : scene_paths) report.ok = run_scene(path, options, report.images) && report.ok;
     return report;
+}
+
+int run_trace(const std::string& scene_path, const RunOptions& o, const PixelTraceRequest& req) {
+    const std::optional<LoadedScene> s = load(scene_path, o);
+    if (!s) return 1;
+    const std::vector<Camera>& cameras = s->scene.setup.cameras;
+    if (req.camera < 1 || req.camera > cameras.size())
+        throw UsageError("--camera " + std::to_string(req.camera) + ": " + scene_path + " has " +
+                         std::to_string(cameras.size()) + " camera" + (cameras.size() == 1 ? "" : "s"));
+    const Camera& cam = cameras[req.camera - 1];
+    if (req.x < 0 || req.y < 0 || req.x >= cam.width || req.y >= cam.height)
+        throw UsageError("--trace " + std::to_string(req.x) + "," + std::to_string(req.y) + ": outside the " +
+                         std::to_string(cam.width) + "x" + std::to_string(cam.height) + " image of camera " +
+                         std::to_string(req.camera) + " (x 0.." + std::to_string(cam.width - 1) + ", y 0.." +
+                         std::to_string(cam.height - 1) + ")");
+    PixelTrace t = trace_pixel(s->scene, req.camera - 1, req.x, req.y, TraceOptions{o.render.cull}, o.render.rounding);
+    t.scene = scene_path;
+    std::fputs(trace_text(s->scene, t).c_str(), stdout);
+    if (req.json_path.empty()) return 0;
+    try {
+        write_file_atomic(req.json_path, trace_json(s->scene, t));
+    } catch (const InputError& e) {
+        std::fprintf(stderr, "%s\n", e.what());
+        return 1;
+    }
+    return 0;
 }
 
 void make_parent_folders(const std::string& path) {

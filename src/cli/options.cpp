@@ -83,6 +83,11 @@ size_t one_of(const std::string& option, const std::string& text, const std::vec
     usage_error(option + " takes " + listed + ", got '" + text + "'");
 }
 
+int report_usage_error(const Program& p, const std::string& message) {
+    std::fprintf(stderr, "%s: %s\n%s\n", p.name.c_str(), message.c_str(), p.usage.c_str());
+    return 2;
+}
+
 std::optional<int> parse(CLI::App& app, const Program& p, int argc, char** argv) {
     // "--opt=" is "--opt" with an empty value (CLI11 would take the next argument instead).
     std::vector<std::string> args;
@@ -114,8 +119,7 @@ std::optional<int> parse(CLI::App& app, const Program& p, int argc, char** argv)
         const size_t colon = what.find(": 1 required ");
         if (colon != std::string::npos && what.size() > 8 && what.compare(what.size() - 8, 8, " missing") == 0)
             what = "option " + what.substr(0, colon) + " needs a value";
-        std::fprintf(stderr, "%s: %s\n%s\n", p.name.c_str(), what.c_str(), p.usage.c_str());
-        return 2;
+        return report_usage_error(p, what);
     }
 }
 

@@ -49,25 +49,12 @@ public:
     }
 };
 
-const char* type_name(MaterialType t) {
-    switch (t) {
-        case MaterialType::Mirror:
-            return "mirror";
-        case MaterialType::Conductor:
-            return "conductor";
-        case MaterialType::Dielectric:
-            return "dielectric";
-        case MaterialType::Plain:
-            return "plain";
-    }
-    return "plain";
-}
-
 std::string mtl_material(const MaterialDesc& m, size_t index) {
     std::string s = "newmtl material_" + std::to_string(index + 1) + "\n";
-    s += std::string("# ") + type_name(m.type) + "; exact values: Ks " + vec(m.specular) + ", MirrorReflectance " +
-         vec(m.mirror) + ", RefractionIndex " + num(double(m.refraction_index)) + ", AbsorptionIndex " +
-         num(double(m.absorption_index)) + ", AbsorptionCoefficient " + vec(m.absorption_coefficient) + "\n";
+    s += std::string("# ") + material_type_name(m.type) + "; exact values: Ks " + vec(m.specular) +
+         ", MirrorReflectance " + vec(m.mirror) + ", RefractionIndex " + num(double(m.refraction_index)) +
+         ", AbsorptionIndex " + num(double(m.absorption_index)) + ", AbsorptionCoefficient " +
+         vec(m.absorption_coefficient) + "\n";
     s += "Ka " + vec(m.ambient) + "\n";
     s += "Kd " + vec(m.diffuse) + "\n";
     switch (m.type) {

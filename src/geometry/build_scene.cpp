@@ -27,8 +27,8 @@ constexpr size_t kParallelFaces = size_t(1) << 16;
 // room for every triangle of the scene), and, when smooth, vertex normals
 // averaged over this mesh only, weighted by area (spec section 3, "Mesh";
 // pooling across meshes does not match the references). Flat scenes get no
-// vertex normals at all.
-void add_mesh(Geometry& s, BuildReport& report, MeshDesc& m, BuildBox* boxes) {
+// vertex normals at all. The degenerate faces' indices in `m` go to `skipped`.
+void add_mesh(Geometry& s, BuildReport& report, MeshDesc& m, BuildBox* boxes, std::vector<uint32_t>& skipped) {
     const uint32_t base = static_cast<uint32_t>(s.positions.size());
     if (base == 0 && s.positions.capacity() <= m.positions.size())
         s.positions = std::move(m.positions);
@@ -110,6 +110,7 @@ void add_mesh(Geometry& s, BuildReport& report, MeshDesc& m, BuildBox* boxes) {
     for (size_t i = first; i < first + faces; ++i) {
         if (s.triangles[i].material == kDropped) {
             ++report.degenerate_triangles;
+            skipped.push_back(static_cast<uint32_t>(i - first));
             continue;
         }
         if (out != i) {
@@ -232,12 +233,20 @@ Scene build(SceneDesc& d, const BvhBuildOptions& bvh) {
     ReusableStorage storage(std::max(nboxes * sizeof(BuildBox), LeafVertices::floats_for(nboxes) * sizeof(float)));
     BuildBox* const boxes = storage.emplace<BuildBox>(nboxes);
     for (size_t i = 0; i < d.meshes.size(); ++i) {
-        add_mesh(g, s.report, d.meshes[i], boxes);
+        MeshDesc& m = d.meshes[i];
+        s.names.meshes.push_back({static_cast<uint32_t>(g.triangles.size()), m.triangle_object, m.id, {}});
+        add_mesh(g, s.report, m, boxes, s.names.meshes.back().skipped);
         std::vector<Vec3>().swap(d.meshes[i].positions);
         std::vector<uint32_t>().swap(d.meshes[i].indices);
     }
-    for (const SphereDesc& sp : d.spheres) g.spheres.push_back({sp.center, sp.radius, sp.material});
-    for (const PlaneDesc& p : d.planes) g.planes.push_back({p.point, normalize(p.normal), p.material});
+    for (const SphereDesc& sp : d.spheres) {
+        g.spheres.push_back({sp.center, sp.radius, sp.material});
+        s.names.spheres.push_back(sp.id);
+    }
+    for (const PlaneDesc& p : d.planes) {
+        g.planes.push_back({p.point, normalize(p.normal), p.material});
+        s.names.planes.push_back(p.id);
+    }
 
     // Boxes of the bounded shapes after the triangles (add_mesh made theirs).
     add_boxes(g, g.count(ShapeKind::Triangle), boxes);

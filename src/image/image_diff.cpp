@@ -26,6 +26,20 @@ int channel_diff(const Image& a, const Image& b, size_t i) { return std::abs(int
 
 }  // namespace
 
+std::string psnr_text(double psnr) {
+    if (std::isinf(psnr)) return "inf";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.2f dB", psnr);
+    return buf;
+}
+
+std::string box_text(const ImageComparison& c) {
+    if (c.box_empty()) return "none";
+    char buf[96];
+    std::snprintf(buf, sizeof buf, "x %d..%d y %d..%d", c.box_x0, c.box_x1, c.box_y0, c.box_y1);
+    return buf;
+}
+
 ImageComparison compare_images(const Image& a, const Image& b, int tolerance) {
     ImageComparison d;
     d.width = a.width;

@@ -12,10 +12,14 @@
 
 namespace rt {
 
-uint8_t quantize(Real value, Rounding rounding) {
+Real clamp_channel(Real value) {
     if (!(value > 0)) return 0;  // negative and NaN
-    if (value >= 255) return 255;
-    return static_cast<uint8_t>(rounding == Rounding::Nearest ? std::floor(value + Real(0.5)) : value);
+    return value >= 255 ? Real(255) : value;
+}
+
+uint8_t quantize(Real value, Rounding rounding) {
+    const Real c = clamp_channel(value);
+    return static_cast<uint8_t>(rounding == Rounding::Nearest ? std::floor(c + Real(0.5)) : c);
 }
 
 namespace {

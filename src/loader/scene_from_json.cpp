@@ -256,6 +256,15 @@ private:
         return vertices_[vertex_id(exactly(require(obj, path, key), kp, 1)[0], kp)];
     }
 
+    // An object's _id as the file writes it, or its 1-based `position` among its kind
+    // when it has none: how --trace names it. Never an error (renders do not read it).
+    std::string object_id(const json& obj, size_t position) const {
+        const json* v = find(obj, "_id");
+        if (v && v->is_string()) return v->get<std::string>();
+        if (v && v->is_number()) return v->dump();
+        return std::to_string(position);
+    }
+
     uint32_t material_ref(const json& obj, const std::string& path) const {
         const json& v = require(obj, path, "Material");
         const std::string mp = path + "/Material";
@@ -340,6 +349,7 @@ private:
             if (const json* v = find(m, "_id")) id = std::to_string(integer(*v, mp + "/_id"));
             if (!material_ids_.emplace(id, static_cast<uint32_t>(out_.materials.size())).second)
                 fail(mp + "/_id", "duplicate material id " + id);
+            d.id = id;
             out_.materials.push_back(d);
         });
     }
@@ -441,10 +451,12 @@ private:
         expect_object(*os, path);
         check_keys(*os, path, path, {"Mesh", "Triangle", "Sphere", "Plane"});
 
+        size_t meshes = 0, triangles = 0;  // positions among their kind, for object_id
         for_each_item(*os, path, "Mesh", [&](const json& m, const std::string& mp) {
             check_keys(m, mp, path + "/Mesh", {"_id", "_shadingMode", "Material", "Faces"});
             MeshDesc mesh;
             mesh.material = material_ref(m, mp);
+            mesh.id = object_id(m, ++meshes);
             if (const json* s = find(m, "_shadingMode")) {
                 const std::string& mode = text(*s, mp + "/_shadingMode");
                 if (mode == "smooth")
@@ -499,6 +511,8 @@ private:
             check_keys(t, tp, path + "/Triangle", {"_id", "Material", "Indices"});
             MeshDesc mesh;
             mesh.material = material_ref(t, tp);
+            mesh.triangle_object = true;
+            mesh.id = object_id(t, ++triangles);
             add_inline_faces(mesh, exactly(require(t, tp, "Indices"), tp + "/Indices", 3), tp + "/Indices");
             mesh.source = tp;
             out_.meshes.push_back(std::move(mesh));
@@ -510,6 +524,7 @@ private:
             d.material = material_ref(s, spp);
             d.center = vertex_ref(s, spp, "Center");
             d.radius = positive(require(s, spp, "Radius"), spp + "/Radius");
+            d.id = object_id(s, out_.spheres.size() + 1);
             out_.spheres.push_back(d);
         });
 
@@ -519,6 +534,7 @@ private:
             d.material = material_ref(p, pp);
             d.point = vertex_ref(p, pp, "Point");
             d.normal = nonzero_vec3(require(p, pp, "Normal"), pp + "/Normal");
+            d.id = object_id(p, out_.planes.size() + 1);
             out_.planes.push_back(d);
         });
     }

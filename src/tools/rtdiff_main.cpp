@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "rt/atomic_file.h"
 #include "rt/cli.h"
 #include "rt/error.h"
 #include "rt/image.h"
@@ -20,7 +21,7 @@ namespace fs = std::filesystem;
 namespace {
 
 const rt::cli::Program kProgram{
-    "rtdiff", "rtdiff 1.0", "usage: rtdiff [--tolerance N] [--heatmap OUT] [--fail-above P] A B",
+    "rtdiff", "rtdiff 1.0", "usage: rtdiff [--tolerance N] [--heatmap OUT] [--html DIR] [--fail-above P] A B",
     "Compares image A with image B (PNG or PPM), or every image of the same name in folders A\n"
     "and B: size, largest and mean channel difference, the pixels with some channel off by\n"
     "more than the tolerance (count, share and bounding box) and PSNR.\n",
@@ -30,21 +31,8 @@ struct Options {
     int tolerance = 1;
     std::string heatmap;               // two images: a PNG; two folders: a folder
     std::optional<double> fail_above;  // percent of pixels
+    std::string html;                  // two folders: a folder for index.html and its heatmaps
 };
-
-std::string psnr_text(double psnr) {
-    if (std::isinf(psnr)) return "inf";
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.2f dB", psnr);
-    return buf;
-}
-
-std::string box_text(const rt::ImageComparison& c) {
-    if (c.box_empty()) return "none";
-    char buf[96];
-    std::snprintf(buf, sizeof buf, "x %d..%d y %d..%d", c.box_x0, c.box_x1, c.box_y0, c.box_y1);
-    return buf;
-}
 
 bool over_limit(const rt::ImageComparison& c, const Options& o) { return o.fail_above && c.pct_over > *o.fail_above; }
 
@@ -58,8 +46,8 @@ int compare_files(const std::string& a_path, const std::string& b_path, const Op
                              a_path + " is " + std::to_string(a.width) + "x" + std::to_string(a.height));
     std::printf("%s vs %s: same size, %dx%d\n", a_path.c_str(), b_path.c_str(), c.width, c.height);
     std::printf("max %d, mean %.4f, %zu of %zu pixels (%.4f%%) off by more than %d, PSNR %s, box %s\n", c.max_diff,
-                c.mean_diff, c.pixels_over, c.pixels, c.pct_over, c.tolerance, psnr_text(c.psnr).c_str(),
-                box_text(c).c_str());
+                c.mean_diff, c.pixels_over, c.pixels, c.pct_over, c.tolerance, rt::psnr_text(c.psnr).c_str(),
+                rt::box_text(c).c_str());
     if (!o.heatmap.empty()) rt::write_png(rt::diff_heatmap(a, b, o.tolerance), o.heatmap);
     if (over_limit(c, o)) {
         std::printf("over --fail-above %g%%\n", *o.fail_above);
@@ -92,14 +80,43 @@ struct Row {
     std::string error;  // not empty: this pair could not be compared
 };
 
+void create_folder(const std::string& dir) {
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) throw rt::InputError(dir + ": cannot create the folder: " + ec.message());
+}
+
+// The --html page's heatmap of image `name`, relative to the page.
+std::string page_heatmap(const std::string& name) { return "heatmaps/" + fs::path(name).stem().string() + ".png"; }
+
+// `file` relative to folder `dir` (both existing), as a page in `dir` links to it.
+std::string relative_to(const std::string& file, const std::string& dir) {
+    return fs::weakly_canonical(file).lexically_relative(fs::weakly_canonical(dir)).generic_string();
+}
+
+// Writes the --html page: index.html in o.html, beside the heatmaps compare_dirs wrote.
+void write_page(const std::string& a_dir, const std::string& b_dir, const Options& o, const std::vector<Row>& rows,
+                const std::vector<std::string>& only_a, const std::vector<std::string>& only_b) {
+    std::vector<rt::DiffPageRow> page;
+    for (const Row& r : rows) {
+        rt::DiffPageRow p{r.name,
+                          r.c,
+                          r.error,
+                          relative_to((fs::path(a_dir) / r.name).string(), o.html),
+                          relative_to((fs::path(b_dir) / r.name).string(), o.html),
+                          ""};
+        if (r.error.empty()) p.heatmap_link = page_heatmap(r.name);
+        page.push_back(p);
+    }
+    rt::write_file_atomic((fs::path(o.html) / "index.html").string(),
+                          rt::diff_page_html(a_dir, b_dir, o.tolerance, page, only_a, only_b));
+}
+
 // Two folders; exit status 0 or 1.
 int compare_dirs(const std::string& a_dir, const std::string& b_dir, const Options& o) {
     const std::set<std::string> a_names = image_names(a_dir), b_names = image_names(b_dir);
-    if (!o.heatmap.empty()) {
-        std::error_code ec;
-        fs::create_directories(o.heatmap, ec);
-        if (ec) throw rt::InputError(o.heatmap + ": cannot create the folder: " + ec.message());
-    }
+    if (!o.heatmap.empty()) create_folder(o.heatmap);
+    if (!o.html.empty()) create_folder((fs::path(o.html) / "heatmaps").string());
     std::vector<Row> rows;
     std::vector<std::string> only_a, only_b;
     for (const std::string& n : a_names)
@@ -118,9 +135,12 @@ int compare_dirs(const std::string& a_dir, const std::string& b_dir, const Optio
             if (!r.c.same_size)
                 r.error = "sizes differ: " + std::to_string(a.width) + "x" + std::to_string(a.height) + " vs " +
                           std::to_string(b.width) + "x" + std::to_string(b.height);
-            else if (!o.heatmap.empty())
-                rt::write_png(rt::diff_heatmap(a, b, o.tolerance),
-                              (fs::path(o.heatmap) / fs::path(n).stem()).string() + ".png");
+            else if (!o.heatmap.empty() || !o.html.empty()) {
+                const rt::Image heat = rt::diff_heatmap(a, b, o.tolerance);
+                if (!o.heatmap.empty())
+                    rt::write_png(heat, (fs::path(o.heatmap) / fs::path(n).stem()).string() + ".png");
+                if (!o.html.empty()) rt::write_png(heat, (fs::path(o.html) / page_heatmap(n)).string());
+            }
         } catch (const rt::InputError& e) {
             r.error = e.what();
         }
@@ -147,7 +167,7 @@ int compare_dirs(const std::string& a_dir, const std::string& b_dir, const Optio
         const bool bad = over_limit(r.c, o);
         if (bad) ++over;
         std::printf("%-*s  %9s  %4d  %8.4f  %10.4f  %9s  %s%s\n", w, r.name.c_str(), size.c_str(), r.c.max_diff,
-                    r.c.mean_diff, r.c.pct_over, psnr_text(r.c.psnr).c_str(), box_text(r.c).c_str(),
+                    r.c.mean_diff, r.c.pct_over, rt::psnr_text(r.c.psnr).c_str(), rt::box_text(r.c).c_str(),
                     bad ? "  OVER" : "");
     }
     for (const std::string& n : only_a) std::printf("only in %s: %s\n", a_dir.c_str(), n.c_str());
@@ -157,6 +177,7 @@ int compare_dirs(const std::string& a_dir, const std::string& b_dir, const Optio
     if (o.fail_above) std::printf(", %zu over --fail-above %g%%", over, *o.fail_above);
     std::printf("\n");
     if (over > 0) status = 1;
+    if (!o.html.empty()) write_page(a_dir, b_dir, o, rows, only_a, only_b);
     return status;
 }
 
@@ -184,6 +205,9 @@ int main(int argc, char** argv) {
                    [&o](const std::string& v) {
                        o.fail_above = cli::number("--fail-above", v, "a percentage from 0 to 100", percent);
                    });
+    cli::add_text(app, "--html", "DIR",
+                  "two folders: write DIR/index.html, the images and heatmaps side by side, worst first", o.html,
+                  "a folder name");
     app.add_option("files", files);
     app.final_callback([&files] {
         if (files.size() != 2)
@@ -194,6 +218,7 @@ int main(int argc, char** argv) {
     try {
         const bool a_dir = is_dir(files[0]), b_dir = is_dir(files[1]);
         if (a_dir && b_dir) return compare_dirs(files[0], files[1], o);
+        if (!o.html.empty() && !a_dir && !b_dir) return cli::report_usage_error(kProgram, "--html needs two folders");
         if (a_dir != b_dir)
             throw rt::InputError((a_dir ? files[1] : files[0]) + ": not a folder, but " +
                                  (a_dir ? files[0] : files[1]) + " is one");

@@ -1,0 +1,282 @@
+// A pixel's ray tree as indented text and as JSON (rt/trace.h; the format: docs/trace.md).
+#include <cmath>
+#include <cstdio>
+#include <string>
+
+#include "rt/trace.h"
+
+namespace rt {
+namespace {
+
+// Text: 10 significant digits, enough to see a channel just under an integer.
+std::string num(Real v) {
+    if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.10g", double(v));
+    return buf;
+}
+
+std::string vec(Vec3 v) { return "(" + num(v.x) + ", " + num(v.y) + ", " + num(v.z) + ")"; }
+
+// The material's _id (its 1-based position for scenes built in code).
+std::string material_id(const Scene& scene, size_t index) {
+    const std::string& id = scene.setup.materials[index].id;
+    return id.empty() ? std::to_string(index + 1) : id;
+}
+
+std::string light_name(size_t index) { return "light " + std::to_string(index + 1); }
+
+// --- text ------------------------------------------------------------------------------
+
+class TextWriter {
+public:
+    explicit TextWriter(const Scene& scene) : scene_(scene) {}
+
+    void line(int indent, const std::string& text) { out_ += std::string(size_t(indent) * 2, ' ') + text + "\n"; }
+
+    void ray(const RayTrace& r, int indent, bool child) {
+        std::string head = std::string(ray_kind_name(r.kind)) + " ray, depth " + std::to_string(r.depth);
+        if (child) head += ", factor " + vec(r.factor) + ", weight " + num(r.weight);
+        if (r.pruned) {
+            line(indent, head + ": not traced (its weight is negligible)");
+            return;
+        }
+        head += ": origin " + vec(r.ray.org) + ", direction " + vec(r.ray.dir) + ", t in (" + num(r.tmin) + ", " +
+                num(r.tmax) + ")";
+        head += r.cull ? ", back faces culled" : ", no culling";
+        if (r.medium >= 0) head += ", inside material " + material_id(scene_, size_t(r.medium));
+        line(indent, head);
+        const int in = indent + 1;
+        if (r.culled) line(in, "back face culled: " + scene_.names.name(r.culled_shape) + " at t = " + num(r.culled_t));
+        if (!r.hit) {
+            line(in, "miss");
+            line(in, "returns " + vec(r.radiance));
+            return;
+        }
+        const Material& m = scene_.setup.materials[r.material];
+        line(in, "hit " + scene_.names.name(r.shape) + " at t = " + num(r.t) + ", point " + vec(r.point));
+        line(in, std::string(r.front ? "front" : "back") + " face, geometric normal " + vec(r.ng) +
+                     ", shading normal " + vec(r.ns));
+        line(in, "material " + material_id(scene_, r.material) + " (" + material_type_name(m.type) + ")");
+        if (r.shaded) {
+            line(in, "ambient " + vec(r.ambient));
+            for (const LightTrace& l : r.lights) light(l, in);
+            line(in, "local (ambient + lights) " + vec(r.local));
+        } else {
+            line(in, "not shaded (a dielectric hit from inside)");
+        }
+        if (r.has_fresnel) {
+            std::string f = "Fresnel reflectance " + num(r.fresnel);
+            if (m.type == MaterialType::Dielectric) {
+                f += ", transmittance " + num(1 - r.fresnel);
+                if (r.refracts)
+                    f += ", refracted direction " + vec(r.refracted);
+                else
+                    f += r.tir ? ", total internal reflection" : ", no refracted ray";
+            }
+            line(in, f);
+        }
+        if (r.beer) line(in, "Beer's law over distance " + num(r.t) + ": attenuation " + vec(r.attenuation));
+        if (r.depth_limit) line(in, "MaxRecursionDepth reached: no secondary rays");
+        for (const RayTrace& c : r.children) ray(c, in, true);
+        line(in, "returns " + vec(r.radiance));
+    }
+
+    void light(const LightTrace& l, int indent) {
+        std::string s = light_name(l.light) + ": n.l = " + num(l.ndotl);
+        if (!l.facing) {
+            line(indent, s + ", faces away");
+            return;
+        }
+        if (l.shadowed) {
+            s += ", shadowed";
+            if (l.occluder_found) s += " by " + scene_.names.name(l.occluder) + " at t = " + num(l.occluder_t);
+        } else {
+            s += ", lit, I/d^2 " + vec(l.irradiance) + ", diffuse " + vec(l.diffuse) + ", specular " + vec(l.specular) +
+                 " (n.h = " + num(l.ndoth) + ")";
+        }
+        line(indent, s);
+        if (l.shadow_traced)
+            line(indent + 1, std::string(ray_kind_name(RayKind::Shadow)) + " ray: origin " + vec(l.shadow.org) +
+                                 ", direction " + vec(l.shadow.dir) + ", t in (0, " + num(l.shadow_tmax) + ")");
+        else
+            line(indent + 1, "no shadow ray (the light is within 2 ShadowRayEpsilon)");
+    }
+
+    std::string take() { return std::move(out_); }
+
+private:
+    const Scene& scene_;
+    std::string out_;
+};
+
+// --- JSON ------------------------------------------------------------------------------
+
+// Doubles as %.17g (enough to tell any two apart); infinities as null.
+std::string jnum(Real v) {
+    if (!std::isfinite(v)) return "null";
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%.17g", double(v));
+    return buf;
+}
+
+std::string jvec(Vec3 v) { return "[" + jnum(v.x) + ", " + jnum(v.y) + ", " + jnum(v.z) + "]"; }
+
+std::string jstr(const std::string& s) {
+    std::string out = "\"";
+    for (char c : s) {
+        if (c == '"' || c == '\\') {
+            out += '\\';
+            out += c;
+        } else if (static_cast<unsigned char>(c) < 0x20) {
+            char buf[8];
+            std::snprintf(buf, sizeof buf, "\\u%04x", unsigned(c));
+            out += buf;
+        } else {
+            out += c;
+        }
+    }
+    return out + "\"";
+}
+
+const char* jbool(bool b) { return b ? "true" : "false"; }
+
+// A JSON object written field by field.
+class Object {
+public:
+    Object& field(const std::string& key, const std::string& raw_value) {
+        out_ += (out_.empty() ? "{" : ", ") + jstr(key) + ": " + raw_value;
+        return *this;
+    }
+    std::string done() const { return out_.empty() ? "{}" : out_ + "}"; }
+
+private:
+    std::string out_;
+};
+
+std::string jshadow_ray(const Ray& r, Real tmax) {
+    return Object()
+        .field("kind", jstr(ray_kind_name(RayKind::Shadow)))
+        .field("origin", jvec(r.org))
+        .field("direction", jvec(r.dir))
+        .field("tmin", "0")
+        .field("tmax", jnum(tmax))
+        .done();
+}
+
+std::string jshape(const Scene& scene, ShapeRef s, Real t) {
+    return Object().field("object", jstr(scene.names.name(s))).field("t", jnum(t)).done();
+}
+
+std::string jlight(const Scene& scene, const LightTrace& l) {
+    Object o;
+    o.field("light", std::to_string(l.light + 1)).field("n_dot_l", jnum(l.ndotl)).field("facing", jbool(l.facing));
+    if (!l.facing) return o.done();
+    o.field("shadow_ray", l.shadow_traced ? jshadow_ray(l.shadow, l.shadow_tmax) : "null");
+    o.field("shadowed", jbool(l.shadowed));
+    o.field("occluder", l.shadowed && l.occluder_found ? jshape(scene, l.occluder, l.occluder_t) : "null");
+    if (!l.shadowed) {
+        o.field("irradiance", jvec(l.irradiance))
+            .field("n_dot_h", jnum(l.ndoth))
+            .field("diffuse", jvec(l.diffuse))
+            .field("specular", jvec(l.specular))
+            .field("added", jvec(l.added));
+    }
+    return o.done();
+}
+
+std::string jnode(const Scene& scene, const RayTrace& r) {
+    Object o;
+    o.field("kind", jstr(ray_kind_name(r.kind))).field("depth", std::to_string(r.depth));
+    o.field("factor", jvec(r.factor)).field("weight", jnum(r.weight)).field("traced", jbool(!r.pruned));
+    if (r.pruned) return o.done();
+    o.field("origin", jvec(r.ray.org)).field("direction", jvec(r.ray.dir));
+    o.field("tmin", jnum(r.tmin)).field("tmax", jnum(r.tmax)).field("cull", jbool(r.cull));
+    o.field("inside_material", r.medium >= 0 ? jstr(material_id(scene, size_t(r.medium))) : "null");
+    o.field("culled", r.culled ? jshape(scene, r.culled_shape, r.culled_t) : "null");
+    if (r.hit) {
+        const Material& m = scene.setup.materials[r.material];
+        o.field("hit", Object()
+                           .field("object", jstr(scene.names.name(r.shape)))
+                           .field("t", jnum(r.t))
+                           .field("point", jvec(r.point))
+                           .field("geometric_normal", jvec(r.ng))
+                           .field("shading_normal", jvec(r.ns))
+                           .field("front", jbool(r.front))
+                           .field("material", Object()
+                                                  .field("id", jstr(material_id(scene, r.material)))
+                                                  .field("type", jstr(material_type_name(m.type)))
+                                                  .done())
+                           .done());
+        o.field("shaded", jbool(r.shaded));
+        if (r.shaded) {
+            std::string lights;
+            for (const LightTrace& l : r.lights) lights += (lights.empty() ? "" : ", ") + jlight(scene, l);
+            o.field("ambient", jvec(r.ambient)).field("lights", "[" + lights + "]").field("local", jvec(r.local));
+        }
+        if (r.has_fresnel) {
+            Object f;
+            f.field("reflectance", jnum(r.fresnel));
+            if (m.type == MaterialType::Dielectric)
+                f.field("transmittance", jnum(1 - r.fresnel))
+                    .field("refracted", r.refracts ? jvec(r.refracted) : "null")
+                    .field("total_internal_reflection", jbool(r.tir));
+            o.field("fresnel", f.done());
+        }
+        o.field("beer", r.beer ? Object().field("distance", jnum(r.t)).field("attenuation", jvec(r.attenuation)).done()
+                               : "null");
+        o.field("depth_limit", jbool(r.depth_limit));
+    } else {
+        o.field("hit", "null");
+    }
+    std::string children;
+    for (const RayTrace& c : r.children) children += (children.empty() ? "" : ", ") + jnode(scene, c);
+    o.field("children", "[" + children + "]");
+    o.field("radiance", jvec(r.radiance));
+    return o.done();
+}
+
+std::string rounding_name(Rounding r) { return r == Rounding::Nearest ? "nearest" : "truncate"; }
+
+std::string pixel_text(const uint8_t p[3]) {
+    return std::to_string(p[0]) + ", " + std::to_string(p[1]) + ", " + std::to_string(p[2]);
+}
+
+}  // namespace
+
+std::string trace_text(const Scene& scene, const PixelTrace& t) {
+    const Camera& cam = scene.setup.cameras.at(t.camera);
+    TextWriter w(scene);
+    w.line(0, "pixel x " + std::to_string(t.x) + ", y " + std::to_string(t.y) + " of camera " +
+                  std::to_string(t.camera + 1) + " (" + cam.image_name + ", " + std::to_string(cam.width) + "x" +
+                  std::to_string(cam.height) + "), MaxRecursionDepth " +
+                  std::to_string(scene.setup.max_recursion_depth) + ", ShadowRayEpsilon " +
+                  num(scene.setup.shadow_ray_epsilon));
+    w.ray(t.root, 0, false);
+    w.line(0, "pixel: " + vec(t.root.radiance) + " before clamping, " + vec(t.clamped) + " clamped, [" +
+                  pixel_text(t.pixel) + "] after rounding (" + rounding_name(t.rounding) + ")");
+    return w.take();
+}
+
+std::string trace_json(const Scene& scene, const PixelTrace& t) {
+    const Camera& cam = scene.setup.cameras.at(t.camera);
+    return Object()
+               .field("scene", jstr(t.scene))
+               .field("camera", std::to_string(t.camera + 1))
+               .field("image", jstr(cam.image_name))
+               .field("width", std::to_string(cam.width))
+               .field("height", std::to_string(cam.height))
+               .field("x", std::to_string(t.x))
+               .field("y", std::to_string(t.y))
+               .field("max_recursion_depth", std::to_string(scene.setup.max_recursion_depth))
+               .field("shadow_ray_epsilon", jnum(scene.setup.shadow_ray_epsilon))
+               .field("rounding", jstr(rounding_name(t.rounding)))
+               .field("pixel", "[" + pixel_text(t.pixel) + "]")
+               .field("radiance", jvec(t.root.radiance))
+               .field("clamped", jvec(t.clamped))
+               .field("ray", jnode(scene, t.root))
+               .done() +
+           "\n";
+}
+
+}  // namespace rt

@@ -1,0 +1,335 @@
+// raytracer --trace (issue 15): one pixel's ray tree, recorded by the integrator itself.
+//
+// The contract:
+//   - the traced pixel's final value is the rendered image's pixel, byte for byte
+//     (random pixels of every official scene, in process and through ./raytracer);
+//   - hits are named as the scene file names them (Mesh _id and face index counting
+//     skipped degenerate faces, Triangle, Sphere, Plane _ids);
+//   - the tree shows Fresnel, refraction, total internal reflection and Beer's law where
+//     the geometry forces them (a glass prism built here);
+//   - a pixel outside the image, a camera the scene lacks, or --camera/--trace-json
+//     without --trace are usage errors (exit 2, nothing written).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <random>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "rt/error.h"
+#include "rt/image.h"
+#include "rt/loader.h"
+#include "rt/render.h"
+#include "rt/scene.h"
+#include "rt/trace.h"
+#include "test_support.h"
+
+using json = nlohmann::json;
+
+namespace {
+
+// The scene files of the complete rows of the official MANIFEST.tsv (each once).
+std::vector<std::string> official_scenes() {
+    std::vector<std::string> out;
+    const std::string root = shared_dir();
+    if (root.empty()) return out;
+    std::ifstream f(root + "/scenes/hw1/MANIFEST.tsv");
+    std::set<std::string> seen;
+    for (std::string line; std::getline(f, line);) {
+        if (line.empty() || line[0] == '#') continue;
+        std::vector<std::string> cols;
+        std::stringstream ss(line);
+        for (std::string c; std::getline(ss, c, '\t');) cols.push_back(c);
+        if (cols.size() >= 4 && cols[3] == "complete" && seen.insert(cols[0]).second)
+            out.push_back(root + "/scenes/hw1/" + cols[0]);
+    }
+    return out;
+}
+
+#define SKIP_WITHOUT_SHARED(scenes)                                                                     \
+    if ((scenes).empty())                                                                               \
+    GTEST_SKIP() << "*** SKIPPED: the course's shared folder (or its MANIFEST.tsv) was not found; set " \
+                    "RT_SHARED_DIR ***"
+
+std::vector<uint8_t> pixel_of(const rt::Image& img, int x, int y) {
+    const size_t at = (size_t(y) * size_t(img.width) + size_t(x)) * 3;
+    return {img.rgb[at], img.rgb[at + 1], img.rgb[at + 2]};
+}
+
+std::string dump(const RunResult& r) {
+    return "\n--- exit " + std::to_string(r.exit_code) + " --- stderr ---\n" + r.err + "--- stdout ---\n" + r.out +
+           "---";
+}
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+// A glass prism (index 1.5) seen head-on: cross-section x in [-1, 1] at z = -2 (the
+// front face, towards the camera), the hypotenuse from (x -1, z -2) to (x 1, z -4) and
+// the side x = 1. Every face winds counter-clockwise seen from outside. A camera ray
+// along -z enters the front face at normal incidence, meets the hypotenuse inside at
+// 45 degrees, beyond the critical angle asin(1/1.5) = 41.8 degrees: total internal
+// reflection, along +x, out through the side at normal incidence. Face 0 of the mesh
+// is degenerate (skipped), so the faces hit are 1 (front), 4 (hypotenuse) and 5 (side).
+const char* const kPrismScene = R"({"Scene": {
+  "BackgroundColor": "0 0 0", "ShadowRayEpsilon": "1e-3", "MaxRecursionDepth": "4",
+  "Cameras": {"Camera": {"_id": "1", "Position": "0.3 0 0", "Gaze": "0 0 -1", "Up": "0 1 0",
+    "NearPlane": "-0.1 0.1 -0.1 0.1", "NearDistance": "1", "ImageResolution": "5 5", "ImageName": "prism.png"}},
+  "Lights": {"AmbientLight": "10 10 10", "PointLight": {"_id": "1", "Position": "0 5 5", "Intensity": "1000 1000 1000"}},
+  "Materials": {"Material": {"_id": "4", "_type": "dielectric", "AmbientReflectance": "0 0 0",
+    "DiffuseReflectance": "0 0 0", "SpecularReflectance": "0 0 0", "PhongExponent": "1",
+    "MirrorReflectance": "1 1 1", "RefractionIndex": "1.5", "AbsorptionCoefficient": "0.1 0.2 0.3"}},
+  "VertexData": {"_data": "-1 -1 -2  1 -1 -2  1 1 -2  -1 1 -2  1 -1 -4  1 1 -4", "_type": "xyz"},
+  "Objects": {"Mesh": {"_id": "7", "Material": "4",
+    "Faces": {"_data": "1 1 2  1 2 3  1 3 4  1 4 6  1 6 5  2 5 6  2 6 3", "_type": "triangle"}}}
+}})";
+
+}  // namespace
+
+// ---- The traced pixel is the rendered pixel -------------------------------------------
+
+TEST(Trace, TracedPixelsEqualTheRenderInEveryOfficialScene) {
+    const std::vector<std::string> scenes = official_scenes();
+    SKIP_WITHOUT_SHARED(scenes);
+    std::mt19937 rng(15);
+    size_t traced = 0;
+    for (const std::string& path : scenes) {
+        const rt::Scene scene = rt::build_scene(rt::load_scene(path));
+        for (size_t c = 0; c < scene.setup.cameras.size(); ++c) {
+            const rt::Camera& cam = scene.setup.cameras[c];
+            for (rt::Rounding rounding : {rt::Rounding::Truncate, rt::Rounding::Nearest}) {
+                rt::RenderOptions ro;
+                ro.threads = 2;
+                ro.rounding = rounding;
+                const rt::Image img = rt::render(scene, c, ro);
+                for (int i = 0; i < 12; ++i) {
+                    const int x = std::uniform_int_distribution<int>(0, cam.width - 1)(rng);
+                    const int y = std::uniform_int_distribution<int>(0, cam.height - 1)(rng);
+                    const rt::PixelTrace t = rt::trace_pixel(scene, c, x, y, rt::TraceOptions{true}, rounding);
+                    EXPECT_EQ(std::vector<uint8_t>(t.pixel, t.pixel + 3), pixel_of(img, x, y))
+                        << path << " camera " << c + 1 << " pixel " << x << "," << y;
+                    ++traced;
+                }
+            }
+        }
+    }
+    EXPECT_GE(traced, 20u * 2 * 12);
+}
+
+TEST(Trace, CommandLineTracePixelEqualsTheWrittenImage) {
+    const std::vector<std::string> scenes = official_scenes();
+    SKIP_WITHOUT_SHARED(scenes);
+    std::mt19937 rng(1507);
+    TempDir tmp;
+    for (const std::string& path : scenes) {
+        const RunResult render = run_raytracer({"-q", "-j", "2", "-o", tmp.path(), path});
+        ASSERT_EQ(render.exit_code, 0) << path << dump(render);
+        const rt::SceneDesc desc = rt::load_scene(path);
+        const size_t c = std::uniform_int_distribution<size_t>(0, desc.cameras.size() - 1)(rng);
+        const rt::CameraDesc& cam = desc.cameras[c];
+        const int x = std::uniform_int_distribution<int>(0, cam.width - 1)(rng);
+        const int y = std::uniform_int_distribution<int>(0, cam.height - 1)(rng);
+        const std::string json_path = tmp / "trace.json";
+        const RunResult r = run_raytracer({"-q", "--trace", std::to_string(x) + "," + std::to_string(y), "--camera",
+                                           std::to_string(c + 1), "--trace-json", json_path, path});
+        ASSERT_EQ(r.exit_code, 0) << path << dump(r);
+        rt::Image img;
+        ASSERT_TRUE(load_png(tmp / cam.image_name, img)) << tmp / cam.image_name;
+        const json doc = json::parse(read_text(json_path));
+        const std::vector<uint8_t> expected = pixel_of(img, x, y);
+        EXPECT_EQ(doc["pixel"].get<std::vector<int>>(), std::vector<int>(expected.begin(), expected.end()))
+            << path << " camera " << c + 1 << " pixel " << x << "," << y;
+        // The text's last line names the same value.
+        const std::string last = "[" + std::to_string(expected[0]) + ", " + std::to_string(expected[1]) + ", " +
+                                 std::to_string(expected[2]) + "] after rounding (truncate)\n";
+        EXPECT_TRUE(r.out.size() >= last.size() && r.out.compare(r.out.size() - last.size(), last.size(), last) == 0)
+            << path << dump(r);
+        // --trace renders nothing: only the JSON and the images of the render are there.
+        EXPECT_FALSE(file_exists(tmp / "trace.json.tmp"));
+    }
+}
+
+// ---- Names, TIR, Fresnel, Beer's law ----------------------------------------------------
+
+TEST(Trace, ShapeNamesCountSkippedFacesAndUseTheFilesIds) {
+    rt::SceneDesc d;
+    d.materials.push_back({});
+    rt::MeshDesc a;  // faces: 0 degenerate, 1 ok, 2 and 3 degenerate, 4 ok
+    a.id = "5";
+    a.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {2, 0, 0}};
+    a.indices = {0, 1, 3, 0, 1, 2, 0, 0, 1, 1, 3, 1, 0, 2, 1};
+    rt::MeshDesc b = a;  // all degenerate
+    b.id = "6";
+    b.indices = {0, 1, 3};
+    rt::MeshDesc tri;
+    tri.id = "9";
+    tri.triangle_object = true;
+    tri.positions = {{0, 0, 1}, {1, 0, 1}, {0, 1, 1}};
+    tri.indices = {0, 1, 2};
+    d.meshes = {a, b, tri};
+    d.spheres.push_back({0, {0, 0, 5}, 1, "3"});
+    d.planes.push_back({0, {0, 0, -5}, {0, 0, 1}, "11"});
+    const rt::Scene s = rt::build_scene(d);
+    ASSERT_EQ(s.geometry.triangles.size(), 3u);
+    EXPECT_EQ(s.names.name({rt::ShapeKind::Triangle, 0}), "Mesh 5, face 1");
+    EXPECT_EQ(s.names.name({rt::ShapeKind::Triangle, 1}), "Mesh 5, face 4");
+    EXPECT_EQ(s.names.name({rt::ShapeKind::Triangle, 2}), "Triangle 9");
+    EXPECT_EQ(s.names.name({rt::ShapeKind::Sphere, 0}), "Sphere 3");
+    EXPECT_EQ(s.names.name({rt::ShapeKind::Plane, 0}), "Plane 11");
+}
+
+TEST(Trace, PrismShowsTotalInternalReflection) {
+    TempDir tmp;
+    write_text(tmp / "prism.json", kPrismScene);
+    const RunResult r = run_raytracer({"--trace", "2,2", "--trace-json", tmp / "t.json", tmp / "prism.json"});
+    ASSERT_EQ(r.exit_code, 0) << dump(r);
+    EXPECT_EQ(list_files(tmp.path()), (std::vector<std::string>{"prism.json", "t.json"})) << "no image";
+    const json doc = json::parse(read_text(tmp / "t.json"));
+    const json& cam = doc["ray"];
+    EXPECT_EQ(cam["kind"], "camera");
+    EXPECT_EQ(cam["hit"]["object"], "Mesh 7, face 1");
+    EXPECT_EQ(cam["hit"]["front"], true);
+    EXPECT_EQ(cam["hit"]["material"]["id"], "4");
+    EXPECT_EQ(cam["hit"]["material"]["type"], "dielectric");
+    // Normal incidence, 1 -> 1.5: R = (0.5 / 2.5)^2.
+    EXPECT_NEAR(cam["fresnel"]["reflectance"].get<double>(), 0.04, 1e-12);
+    EXPECT_EQ(cam["fresnel"]["total_internal_reflection"], false);
+    ASSERT_EQ(cam["children"].size(), 2u);
+    const json& in = cam["children"][1];
+    EXPECT_EQ(in["kind"], "refraction");
+    EXPECT_EQ(in["depth"], 1);
+    EXPECT_EQ(in["cull"], false);
+    EXPECT_EQ(in["inside_material"], "4");
+    EXPECT_EQ(in["hit"]["object"], "Mesh 7, face 4");
+    EXPECT_EQ(in["hit"]["front"], false);
+    EXPECT_EQ(in["shaded"], false);
+    EXPECT_EQ(in["fresnel"]["reflectance"], 1.0);
+    EXPECT_EQ(in["fresnel"]["total_internal_reflection"], true);
+    EXPECT_TRUE(in["fresnel"]["refracted"].is_null());
+    // Beer's law over the path inside, front face to hypotenuse: 1.3 less the offset.
+    const double d = in["beer"]["distance"].get<double>();
+    EXPECT_NEAR(d, 1.3, 2e-3);
+    EXPECT_NEAR(in["beer"]["attenuation"][2].get<double>(), std::exp(-0.3 * d), 1e-12);
+    ASSERT_EQ(in["children"].size(), 1u) << "total internal reflection: no refraction ray";
+    const json& tir = in["children"][0];
+    EXPECT_EQ(tir["kind"], "reflection");
+    EXPECT_EQ(tir["inside_material"], "4");
+    EXPECT_NEAR(tir["direction"][0].get<double>(), 1, 1e-12);
+    EXPECT_EQ(tir["hit"]["object"], "Mesh 7, face 5");
+    EXPECT_EQ(tir["hit"]["front"], false);
+    EXPECT_NEAR(tir["fresnel"]["reflectance"].get<double>(), 0.04, 1e-12);  // 1.5 -> 1, normal incidence
+    EXPECT_FALSE(tir["fresnel"]["refracted"].is_null());
+    // The text says the same.
+    EXPECT_TRUE(contains(r.out, "hit Mesh 7, face 4")) << dump(r);
+    EXPECT_TRUE(contains(r.out, "total internal reflection")) << dump(r);
+    EXPECT_TRUE(contains(r.out, "Beer's law over distance")) << dump(r);
+}
+
+TEST(Trace, LightsAreReportedLitOrShadowedByTheirOccluder) {
+    // A plane lit by two lights; a sphere between the plane and the second light.
+    const char* scene = R"({"Scene": {
+      "Cameras": {"Camera": {"Position": "0 0 5", "Gaze": "0 0 -1", "Up": "0 1 0",
+        "NearPlane": "-0.1 0.1 -0.1 0.1", "NearDistance": "1", "ImageResolution": "3 3", "ImageName": "l.png"}},
+      "Lights": {"PointLight": [{"Position": "0 0 4", "Intensity": "100 100 100"},
+                                {"Position": "0 4 2", "Intensity": "100 100 100"}]},
+      "Materials": {"Material": {"_id": "2", "DiffuseReflectance": "1 1 1"}},
+      "VertexData": {"_data": "0 0 0  0 2 1", "_type": "xyz"},
+      "Objects": {"Sphere": {"_id": "8", "Material": "2", "Center": "2", "Radius": "0.5"},
+                  "Plane": {"_id": "3", "Material": "2", "Point": "1", "Normal": "0 0 1"}}}})";
+    TempDir tmp;
+    write_text(tmp / "l.json", scene);
+    const RunResult r = run_raytracer({"--trace", "1,1", "--trace-json", tmp / "t.json", tmp / "l.json"});
+    ASSERT_EQ(r.exit_code, 0) << dump(r);
+    const json doc = json::parse(read_text(tmp / "t.json"));
+    const json& ray = doc["ray"];
+    EXPECT_EQ(ray["hit"]["object"], "Plane 3");
+    ASSERT_EQ(ray["lights"].size(), 2u);
+    const json& lit = ray["lights"][0];
+    EXPECT_EQ(lit["shadowed"], false);
+    EXPECT_NEAR(lit["n_dot_l"].get<double>(), 1, 1e-12);
+    EXPECT_NEAR(lit["irradiance"][0].get<double>(), 100.0 / 16, 1e-9);  // I / d^2, d = 4
+    EXPECT_NEAR(lit["diffuse"][0].get<double>(), 100.0 / 16, 1e-9);
+    const json& dark = ray["lights"][1];
+    EXPECT_EQ(dark["shadowed"], true);
+    EXPECT_EQ(dark["occluder"]["object"], "Sphere 8");
+    EXPECT_TRUE(dark.find("irradiance") == dark.end());
+    // Only the first light counts: the pixel is 100/16 = 6.25, truncated to 6.
+    EXPECT_EQ(doc["pixel"], json({6, 6, 6}));
+    EXPECT_TRUE(contains(r.out, "shadowed by Sphere 8 at t = ")) << dump(r);
+}
+
+TEST(Trace, ABackFaceTheCameraRayPassesOverIsReported) {
+    // A triangle at z = 2 wound clockwise seen from the camera (its front faces -z), in front
+    // of a plane at z = 0: culled, the camera ray passes it (t = 3) and hits the plane (t = 5).
+    const char* scene = R"({"Scene": {
+      "Cameras": {"Camera": {"Position": "0 0 5", "Gaze": "0 0 -1", "Up": "0 1 0",
+        "NearPlane": "-0.1 0.1 -0.1 0.1", "NearDistance": "1", "ImageResolution": "3 3", "ImageName": "c.png"}},
+      "Materials": {"Material": {"AmbientReflectance": "1 1 1"}},
+      "Lights": {"AmbientLight": "10 10 10"},
+      "VertexData": {"_data": "0 0 0  -1 -1 2  0 1 2  1 -1 2", "_type": "xyz"},
+      "Objects": {"Triangle": {"_id": "5", "Material": "1", "Indices": "2 3 4"},
+                  "Plane": {"_id": "2", "Material": "1", "Point": "1", "Normal": "0 0 1"}}}})";
+    TempDir tmp;
+    write_text(tmp / "c.json", scene);
+    const RunResult culled = run_raytracer({"--trace", "1,1", "--trace-json", tmp / "a.json", tmp / "c.json"});
+    ASSERT_EQ(culled.exit_code, 0) << dump(culled);
+    const json a = json::parse(read_text(tmp / "a.json"));
+    EXPECT_EQ(a["ray"]["hit"]["object"], "Plane 2");
+    EXPECT_NEAR(a["ray"]["hit"]["t"].get<double>(), 5, 1e-12);
+    EXPECT_EQ(a["ray"]["culled"]["object"], "Triangle 5");
+    EXPECT_NEAR(a["ray"]["culled"]["t"].get<double>(), 3, 1e-12);
+    EXPECT_TRUE(contains(culled.out, "back face culled: Triangle 5 at t = 3")) << dump(culled);
+    const RunResult all =
+        run_raytracer({"--no-cull", "--trace", "1,1", "--trace-json", tmp / "b.json", tmp / "c.json"});
+    ASSERT_EQ(all.exit_code, 0) << dump(all);
+    const json b = json::parse(read_text(tmp / "b.json"));
+    EXPECT_EQ(b["ray"]["hit"]["object"], "Triangle 5");
+    EXPECT_EQ(b["ray"]["hit"]["front"], false);
+    EXPECT_EQ(b["ray"]["cull"], false);
+    EXPECT_TRUE(b["ray"]["culled"].is_null());
+}
+
+// ---- Usage errors -----------------------------------------------------------------------
+
+TEST(Trace, UsageErrorsExitTwoAndWriteNothing) {
+    TempDir tmp;
+    write_text(tmp / "prism.json", kPrismScene);
+    const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+        {{"--trace", "5,0", "prism.json"}, "--trace 5,0: outside the 5x5 image of camera 1 (x 0..4, y 0..4)"},
+        {{"--trace", "0,5", "prism.json"}, "--trace 0,5: outside the 5x5 image of camera 1 (x 0..4, y 0..4)"},
+        {{"--trace", "-1,0", "prism.json"}, "--trace X needs a whole number from 0 to 1073741824, got '-1'"},
+        {{"--trace", "3", "prism.json"}, "--trace needs X,Y, got '3'"},
+        {{"--trace", "1,1", "--camera", "2", "prism.json"}, "--camera 2: prism.json has 1 camera"},
+        {{"--trace", "1,1", "--camera", "0", "prism.json"},
+         "--camera needs a whole number from 1 to 1073741824, got '0'"},
+        {{"--camera", "1", "prism.json"}, "--camera and --trace-json need --trace"},
+        {{"--trace-json", "t.json", "prism.json"}, "--camera and --trace-json need --trace"},
+        {{"--trace", "1,1", "prism.json", "prism.json"}, "--trace takes one scene file"},
+    };
+    for (const auto& [args, message] : cases) {
+        const RunResult r = run_raytracer(args, tmp.path());
+        std::string all;
+        for (const std::string& a : args) all += a + " ";
+        EXPECT_EQ(r.exit_code, 2) << all << dump(r);
+        EXPECT_TRUE(contains(r.err, "raytracer: " + message + "\nusage: raytracer ")) << all << dump(r);
+        EXPECT_EQ(r.out, "") << all;
+    }
+    EXPECT_EQ(list_files(tmp.path()), std::vector<std::string>{"prism.json"});
+}
+
+TEST(Trace, BadSceneIsBadInput) {
+    TempDir tmp;
+    json j = json::parse(kPrismScene);
+    j["Scene"]["Objects"]["Mesh"]["Material"] = "5";  // no such material
+    write_text(tmp / "bad.json", j.dump());
+    const RunResult r = run_raytracer({"--trace", "0,0", tmp / "bad.json"});
+    EXPECT_EQ(r.exit_code, 1) << dump(r);
+    EXPECT_EQ(r.err,
+              tmp / "bad.json" + ": /Scene/Objects/Mesh/Material: material id 5 does not exist (1 materials defined)\n")
+        << dump(r);
+    EXPECT_EQ(r.out, "");
+}
