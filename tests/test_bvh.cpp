@@ -448,54 +448,75 @@ void shoot(const rt::Scene& s, Checker& ck, Rng& rng, int rays, Real extent) {
 // read the copy and the others (Bvh4Node::kIndexedLeaf) their triangles' positions.
 enum class Vertices { kDouble, kFloat, kMixed };
 
-// Whether every coordinate of the leaf's primitives (prims[first, first + size))
-// is a float exactly, and all of them are triangles.
-bool leaf_is_float(const rt::Scene& s, uint32_t first, uint32_t size) {
+// Whether the leaf's primitives (prims[first, first + size)) are all triangles,
+// and whether all their coordinates are floats exactly as well.
+struct LeafKind {
+    bool triangles = true, floats = true;
+};
+LeafKind leaf_kind(const rt::Scene& s, uint32_t first, uint32_t size) {
+    LeafKind kind;
     for (uint32_t i = first; i < first + size; ++i) {
         const rt::ShapeRef shape = s.geometry.shape_of(s.accel.bvh.prims[i]);
-        if (shape.kind != rt::ShapeKind::Triangle) return false;
+        if (shape.kind != rt::ShapeKind::Triangle) return {false, false};
         for (uint32_t v : s.geometry.triangles[shape.index].v) {
             const Vec3 p = s.geometry.positions[v];
-            if (to_float(p.x) != p.x || to_float(p.y) != p.y || to_float(p.z) != p.z) return false;
+            if (to_float(p.x) != p.x || to_float(p.y) != p.y || to_float(p.z) != p.z) kind.floats = false;
         }
     }
-    return true;
+    return kind;
 }
 
-// The leaf-order copy serves exactly the leaves of float triangles, holds their
-// vertices, and exists when it serves some leaf (scene.h, LeafVertices). Returns
-// how many leaves it serves and how many there are.
-std::pair<size_t, size_t> check_leaf_vertices(const rt::Scene& s) {
-    const float* copy = s.accel.leaf_vertices.data();
-    size_t float_leaves = 0, leaves = 0;
+// Coordinate `axis` of vertex k of leaf position first + j in the copy, as a Real.
+template <class T>
+Real copied(const T* copy, uint32_t first, uint32_t n, uint32_t j, int k, int axis) {
+    return Real(copy[rt::LeafVertices::at(first, n, j, k, axis)]);
+}
+
+// The leaf-order copy (scene.h, LeafVertices) is in double for scenes of up to
+// options.double_copy_max primitives and serves every leaf of triangles, in float
+// above and serves exactly the leaves of float triangles; it holds their vertices,
+// and exists when it serves some leaf. Returns how many leaves it serves and how
+// many there are.
+std::pair<size_t, size_t> check_leaf_vertices(const rt::Scene& s, const rt::BvhBuildOptions& options) {
+    const float* floats = s.accel.leaf_vertices.floats();
+    const double* doubles = s.accel.leaf_vertices.doubles();
+    const bool want_doubles = s.accel.bvh.prims.size() <= options.double_copy_max;
+    size_t servable = 0, leaves = 0;
     for (const rt::Bvh4Node& nd : s.accel.bvh.nodes)
         for (int k = 0; k < 4; ++k) {
             if (!nd.is_leaf(k) || nd.child[k] == rt::Bvh4Node::kEmpty) continue;
             ++leaves;
-            const uint32_t first = ~static_cast<uint32_t>(nd.child[k]);
-            const bool is_float = leaf_is_float(s, first, nd.leaf_size(k));
-            float_leaves += is_float;
-            if (!copy) continue;
-            EXPECT_EQ(!(nd.count[k] & rt::Bvh4Node::kIndexedLeaf), is_float) << "leaf at prims[" << first << "]";
-            if (!is_float) continue;
-            for (uint32_t i = first; i < first + nd.leaf_size(k); ++i) {
-                const rt::Triangle& t = s.geometry.triangles[s.accel.bvh.prims[i]];
+            const uint32_t first = ~static_cast<uint32_t>(nd.child[k]), n = nd.leaf_size(k);
+            const LeafKind kind = leaf_kind(s, first, n);
+            const bool serve = want_doubles ? kind.triangles : kind.floats;
+            servable += serve;
+            if (!floats && !doubles) continue;
+            EXPECT_EQ(!(nd.count[k] & rt::Bvh4Node::kIndexedLeaf), serve) << "leaf at prims[" << first << "]";
+            if (!serve) continue;
+            for (uint32_t j = 0; j < n; ++j) {
+                const rt::Triangle& t = s.geometry.triangles[s.accel.bvh.prims[first + j]];
                 for (int v = 0; v < 3; ++v)
                     for (int a = 0; a < 3; ++a)
-                        EXPECT_EQ(Real(copy[rt::LeafVertices::at(first, nd.leaf_size(k), i - first, v, a)]),
+                        EXPECT_EQ(doubles ? copied(doubles, first, n, j, v, a) : copied(floats, first, n, j, v, a),
                                   s.geometry.positions[t.v[v]][a])
-                            << "prims[" << i << "]";
+                            << "prims[" << first + j << "]";
             }
         }
-    EXPECT_EQ(copy != nullptr, rt::kLeafBlock > 1 && float_leaves > 0)
-        << float_leaves << " of " << leaves << " leaves hold only float triangles";
-    return {float_leaves, leaves};
+    const bool want_copy = rt::kLeafBlock > 1 && servable > 0;
+    EXPECT_EQ(doubles != nullptr, want_copy && want_doubles) << servable << " of " << leaves << " leaves servable";
+    EXPECT_EQ(floats != nullptr, want_copy && !want_doubles) << servable << " of " << leaves << " leaves servable";
+    return {servable, leaves};
 }
 
-void run_soup(const SoupSpec& spec, int rays, Vertices vertices = Vertices::kDouble) {
-    const char* names[] = {"", ", float vertices", ", float vertices in 3 of 4 triangles"};
+// Which leaf-order copy run_soup's scene gets: the default (double for these small
+// soups), or float (where the vertices allow).
+enum class Copy { kDefault, kFloat };
+
+void run_soup(const SoupSpec& spec, int rays, Vertices vertices = Vertices::kDouble, Copy copy = Copy::kDefault) {
+    const char* names[] = {"", ", float vertices", ", float vertices but one coordinate in 4 triangles"};
     SCOPED_TRACE("seed " + std::to_string(spec.seed) + ", " + std::to_string(spec.triangles) + " triangles, " +
-                 std::to_string(spec.spheres) + " spheres" + names[int(vertices)]);
+                 std::to_string(spec.spheres) + " spheres" + names[int(vertices)] +
+                 (copy == Copy::kFloat ? ", float copy" : ""));
     Rng rng(spec.seed);
     rt::SceneDesc d = random_scene(spec, rng);
     if (vertices != Vertices::kDouble)
@@ -511,12 +532,14 @@ void run_soup(const SoupSpec& spec, int rays, Vertices vertices = Vertices::kDou
                 for (int a = 0; a < 3; ++a)
                     if (a != keep) p[a] = to_float(p[a]);
             }
-    const rt::Scene s = rt::build_scene(std::move(d));
+    rt::BvhBuildOptions options;
+    if (copy == Copy::kFloat) options.double_copy_max = 0;
+    const rt::Scene s = rt::build_scene(std::move(d), options);
     check_structure(s);
-    const auto [float_leaves, leaves] = check_leaf_vertices(s);
-    if (vertices == Vertices::kMixed) {  // both kinds of leaves, or the test says little
-        EXPECT_GT(float_leaves, 0u);
-        EXPECT_LT(float_leaves, leaves);
+    const auto [served, leaves] = check_leaf_vertices(s, options);
+    if (vertices == Vertices::kMixed && copy == Copy::kFloat) {  // both kinds of leaves, or the test says little
+        EXPECT_GT(served, 0u);
+        EXPECT_LT(served, leaves);
     }
     Checker ck{s};
     shoot(s, ck, rng, rays, spec.extent);
@@ -561,18 +584,22 @@ TEST(BvhProperty, LargeSoups) {
 
 // The same checks with float vertices: leaves read the leaf-order copy.
 TEST(BvhProperty, FloatVertexSoups) {
-    for (uint64_t seed = 1; seed <= 4; ++seed) run_soup({seed + 400, 9, 0, 0, 2, 1, true}, 300, Vertices::kFloat);
-    run_soup({31, 500, 0, 2, 3, 1.5, true}, 2000, Vertices::kFloat);
-    run_soup({32, 3000, 0, 1, 10, 1, false}, 400, Vertices::kFloat);
-    run_soup({33, 2000, 0, 0, 1, 0.05, false}, 500, Vertices::kFloat);
-    run_soup({34, 300, 20, 0, 5, 2, false}, 500, Vertices::kFloat);  // spheres' leaves read their ids
+    for (uint64_t seed = 1; seed <= 4; ++seed)
+        run_soup({seed + 400, 9, 0, 0, 2, 1, true}, 300, Vertices::kFloat, Copy::kFloat);
+    run_soup({31, 500, 0, 2, 3, 1.5, true}, 2000, Vertices::kFloat, Copy::kFloat);
+    run_soup({32, 3000, 0, 1, 10, 1, false}, 400, Vertices::kFloat, Copy::kFloat);
+    run_soup({33, 2000, 0, 0, 1, 0.05, false}, 500, Vertices::kFloat, Copy::kFloat);
+    run_soup({34, 300, 20, 0, 5, 2, false}, 500, Vertices::kFloat, Copy::kFloat);  // spheres' leaves read their ids
 }
 
-// Some leaves read the copy, the others their primitives' ids: the same answers.
+// With the float copy some leaves read it, the others their primitives' ids; with
+// the double copy every leaf of triangles reads it. The same answers.
 TEST(BvhProperty, MixedVertexSoups) {
-    for (uint64_t seed = 1; seed <= 4; ++seed) run_soup({seed + 500, 40, 2, 0, 2, 1, true}, 300, Vertices::kMixed);
-    run_soup({41, 3000, 50, 1, 10, 1, false}, 400, Vertices::kMixed);
-    run_soup({42, 2000, 0, 0, 1, 0.05, true}, 500, Vertices::kMixed);
+    for (uint64_t seed = 1; seed <= 4; ++seed)
+        run_soup({seed + 500, 40, 2, 0, 2, 1, true}, 300, Vertices::kMixed, Copy::kFloat);
+    run_soup({41, 3000, 50, 1, 10, 1, false}, 400, Vertices::kMixed, Copy::kFloat);
+    run_soup({42, 2000, 0, 0, 1, 0.05, true}, 500, Vertices::kMixed, Copy::kFloat);
+    run_soup({43, 3000, 50, 1, 10, 1, false}, 400, Vertices::kMixed);
 }
 
 TEST(BvhProperty, AllCoincident) {

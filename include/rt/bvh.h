@@ -133,6 +133,10 @@ struct BvhBuildOptions {
     uint32_t block = kLeafBlock;  // SAH counts a leaf's cost in blocks of this many primitives (1..16)
     int bins = 16;                // SAH bins per axis for large ranges (2..16; small ranges use fewer)
     bool sah = true;              // false: object-median splits only (fastest build, slower rays)
+    // Leaf-order vertices (scene.h, LeafVertices) in double for scenes of up to
+    // this many primitives (72 bytes a triangle, at most 9 MiB: a copy that stays
+    // in cache), in float above (docs/speed.md); 0: never double.
+    size_t double_copy_max = size_t(1) << 17;
 };
 
 struct Bvh {

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <iterator>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -227,22 +228,27 @@ struct Geometry {
     }
 };
 
-// Each BVH leaf triangle's vertices a, b, c as 9 floats, in leaf order (entry i is
-// triangle bvh.prims[i]), so that a leaf's triangles are one block of memory
-// instead of a chain of loads (prims, triangles, positions). Within a leaf of n
-// triangles the floats are grouped by coordinate (at(), below), so that four
-// triangles' x of vertex a, say, are one plain load, not a gather. They stand in
-// for a leaf only where they change no number the tests see: a leaf of triangles
-// whose every vertex coordinate is a float exactly (PLY meshes are); build_scene
-// marks every other leaf Bvh4Node::kIndexedLeaf, and makes them only when some
-// leaf is served and leaves test four triangles at once (kLeafBlock). Their storage is the one
-// the BVH build's boxes were in (ReusableStorage: its pages are already touched,
-// and on this VM a fresh page costs more than the copy into it).
+// Each BVH leaf triangle's vertices a, b, c as 9 coordinates, in leaf order
+// (entry i is triangle bvh.prims[i]), so that a leaf's triangles are one block of
+// memory instead of a chain of loads (prims, triangles, positions). Within a leaf
+// of n triangles the coordinates are grouped (at(), below), so that four
+// triangles' x of vertex a, say, are one plain load, not a gather. build_scene
+// makes them when leaves test four triangles at once (kLeafBlock), in one of two
+// precisions, and only where they change no number the tests see:
+//  - doubles, for scenes of at most BvhBuildOptions::double_copy_max primitives
+//    (the official scenes, whose JSON coordinates are seldom floats): every leaf
+//    of triangles;
+//  - floats, for larger ones: the leaves of triangles whose every coordinate is a
+//    float exactly (PLY meshes are), at 36 bytes a triangle, in the storage the
+//    BVH build's boxes were in (ReusableStorage: its pages are already touched,
+//    and on this VM a fresh page costs more than the copy into it).
+// Every other leaf (a sphere, a coordinate that is not a float) is marked
+// Bvh4Node::kIndexedLeaf and reads its primitives through their ids.
 class LeafVertices {
 public:
-    // Floats for n triangles: loads of four floats from the last leaf's last
-    // triangle read up to three floats past its end.
-    static constexpr size_t floats_for(size_t n) { return 9 * n + 3; }
+    // Coordinates for n triangles: loads of four from the last leaf's last
+    // triangle read up to three past its end.
+    static constexpr size_t coordinates_for(size_t n) { return 9 * n + 3; }
     // Index of coordinate `axis` of vertex `k` of the triangle at leaf position
     // first + j, in the leaf at prims[first, first + n).
     static size_t at(uint32_t first, uint32_t n, uint32_t j, int k, int axis) {
@@ -250,16 +256,26 @@ public:
     }
 
     LeafVertices() = default;
-    // `floats` (floats_for(triangles)) is the array `storage` holds.
-    LeafVertices(ReusableStorage&& storage, const float* floats, size_t triangles)
-        : storage_(std::move(storage)), floats_(floats), triangles_(triangles) {}
-    // Null when there are none.
-    const float* data() const { return floats_; }
+    // `coordinates` (coordinates_for(triangles) of them, float or double) is the
+    // array `storage` holds.
+    template <class T>
+    LeafVertices(ReusableStorage&& storage, const T* coordinates, size_t triangles)
+        : storage_(std::move(storage)), triangles_(triangles) {
+        static_assert(std::is_same_v<T, float> || std::is_same_v<T, double>);
+        if constexpr (std::is_same_v<T, float>)
+            floats_ = coordinates;
+        else
+            doubles_ = coordinates;
+    }
+    // The copy in its precision; null when it is in the other one, or there is none.
+    const float* floats() const { return floats_; }
+    const double* doubles() const { return doubles_; }
     size_t triangles() const { return triangles_; }
 
 private:
     ReusableStorage storage_;
     const float* floats_ = nullptr;
+    const double* doubles_ = nullptr;
     size_t triangles_ = 0;
 };
 

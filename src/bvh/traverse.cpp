@@ -3,6 +3,7 @@
 // compiler targets it, scalar otherwise), against float bounds rounded outwards.
 #include <algorithm>
 #include <limits>
+#include <type_traits>
 
 #if defined(__AVX__)
 #include <immintrin.h>
@@ -129,17 +130,21 @@ inline Vertices4 indexed_vertices4(const Scene& s, const RayPre& p, const uint32
     return r;
 }
 
+// Four coordinates from the leaf-order vertices, as doubles.
+inline __m256d load4(const float* p) { return _mm256_cvtps_pd(_mm_loadu_ps(p)); }
+inline __m256d load4(const double* p) { return _mm256_loadu_pd(p); }
+
 // Vertices of the triangles at leaf positions first + j0 .. first + j0 + 4 of the
-// leaf at prims[first, first + n) from Acceleration::leaf_vertices (floats that
-// equal the positions exactly); lanes past the leaf's end hold other floats.
-inline Vertices4 leaf_vertices4(const float* leaf_vertices, const RayPre& p, uint32_t first, uint32_t n, uint32_t j0) {
+// leaf at prims[first, first + n) from Acceleration::leaf_vertices (coordinates
+// that equal the positions exactly); lanes past the leaf's end hold other numbers.
+template <class T>
+inline Vertices4 leaf_vertices4(const T* leaf_vertices, const RayPre& p, uint32_t first, uint32_t n, uint32_t j0) {
     const int axis[3] = {p.kx, p.ky, p.kz};
     Vertices4 r;
     for (int k = 0; k < 3; ++k)
         for (int c = 0; c < 3; ++c)
-            r.v[k][c] =
-                _mm256_sub_pd(_mm256_cvtps_pd(_mm_loadu_ps(leaf_vertices + LeafVertices::at(first, n, j0, k, axis[c]))),
-                              _mm256_set1_pd(p.ray.org[axis[c]]));
+            r.v[k][c] = _mm256_sub_pd(load4(leaf_vertices + LeafVertices::at(first, n, j0, k, axis[c])),
+                                      _mm256_set1_pd(p.ray.org[axis[c]]));
     return r;
 }
 
@@ -188,35 +193,45 @@ inline int edges4(const RayPre& p, const Vertices4& vx, int n, Edges4& e) {
     return out;
 }
 
+// The leaf at prims[first, first + size) from the leaf-order vertices `lv`, as
+// test_leaf (below) does.
+template <bool kCull, bool kShadow, class T, class Limit, class OnHit>
+inline bool test_copied_leaf(const Scene& s, const RayPre& p, const T* lv, uint32_t first, uint32_t size, Real tmin,
+                             const Limit& limit, Real w[3], const OnHit& hit) {
+    // A leaf's vertices are one block; primitive ids are read only for hits.
+    for (uint32_t j0 = 0; j0 < size; j0 += 4) {
+        const int n = static_cast<int>(std::min<uint32_t>(4, size - j0));
+        Edges4 e;
+        for (int mask = edges4<kCull>(p, leaf_vertices4(lv, p, first, size, j0), n, e); mask; mask &= mask - 1) {
+            const int j = __builtin_ctz(mask);
+            Real t;
+            if (!triangle_hit<kShadow>(p, e.lane(j), tmin, limit(), t, w)) continue;
+            const float* corners = nullptr;
+            if constexpr (std::is_same_v<T, float>) corners = lv + LeafVertices::at(first, size, j0 + j, 0, 0);
+            if (hit(s.accel.bvh.prims[first + j0 + j], t, corners)) return true;
+        }
+    }
+    return false;
+}
+
 // Calls hit(id, t, corners) (weights in w) for every primitive of the leaf at
 // prims[first] with Bvh4Node count `count` that the ray hits in (tmin, limit()), in
-// leaf order; corners is the triangle's first float in the leaf-order vertices
-// (Hit::corners, with the leaf's size as stride), or null. limit() is read again
-// for each test, and hit() returns true to stop early (test_leaf then returns true).
+// leaf order; corners is the triangle's first float in the float leaf-order
+// vertices (Hit::corners, with the leaf's size as stride), or null. limit() is read
+// again for each test, and hit() returns true to stop early (test_leaf then
+// returns true).
 template <bool kCull, bool kShadow, class Limit, class OnHit>
 inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint16_t count, Real tmin, const Limit& limit,
                       Real w[3], const OnHit& hit) {
-    const uint32_t end = first + Bvh4Node::leaf_size_of(count);
-    // Two loops, one per source of vertices: one loop choosing the source per
+    const uint32_t size = Bvh4Node::leaf_size_of(count);
+    const uint32_t end = first + size;
+    // Separate loops per source of vertices: one loop choosing the source per
     // block of four was 3-10% slower (knot_4m_glass render, medians of 5 and 7).
-    const float* leaf_vertices = s.accel.leaf_vertices.data();
-    if (leaf_vertices && !(count & Bvh4Node::kIndexedLeaf)) {
-        // The leaf's vertices are one block; primitive ids are read only for hits.
-        const uint32_t size = end - first;
-        for (uint32_t i = first; i < end; i += 4) {
-            const int n = static_cast<int>(std::min<uint32_t>(4, end - i));
-            Edges4 e;
-            for (int mask = edges4<kCull>(p, leaf_vertices4(leaf_vertices, p, first, size, i - first), n, e); mask;
-                 mask &= mask - 1) {
-                const int j = __builtin_ctz(mask);
-                Real t;
-                if (triangle_hit<kShadow>(p, e.lane(j), tmin, limit(), t, w) &&
-                    hit(s.accel.bvh.prims[i + j], t,
-                        leaf_vertices + LeafVertices::at(first, size, i + j - first, 0, 0)))
-                    return true;
-            }
-        }
-        return false;
+    if (!(count & Bvh4Node::kIndexedLeaf)) {
+        if (const double* lv = s.accel.leaf_vertices.doubles())
+            return test_copied_leaf<kCull, kShadow>(s, p, lv, first, size, tmin, limit, w, hit);
+        if (const float* lv = s.accel.leaf_vertices.floats())
+            return test_copied_leaf<kCull, kShadow>(s, p, lv, first, size, tmin, limit, w, hit);
     }
     for (uint32_t i = first; i < end; i += 4) {
         const int n = static_cast<int>(std::min<uint32_t>(4, end - i));

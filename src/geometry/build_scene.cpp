@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <chrono>
 #include <thread>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -141,53 +142,46 @@ namespace {
 inline bool is_float(Real x) { return Real(float(x)) == x; }
 
 // Copies the vertices of the leaf at prims[first, first + n) into out (layout:
-// LeafVertices::at); returns whether all of them are triangles whose coordinates
-// are floats exactly, so that the copy can stand in for them.
-bool copy_leaf(const Geometry& g, const std::vector<uint32_t>& prims, uint32_t first, uint32_t n, float* out) {
+// LeafVertices::at); returns whether the copy can stand in for them: all are
+// triangles, and their coordinates are all T exactly.
+template <class T>
+bool copy_leaf(const Geometry& g, const std::vector<uint32_t>& prims, uint32_t first, uint32_t n, T* out) {
     bool exact = true;
     for (uint32_t j = 0; j < n; ++j) {
         const ShapeRef shape = g.shape_of<true>(prims[first + j]);
         if (shape.kind != ShapeKind::Triangle) {
             for (int k = 0; k < 3; ++k)
-                for (int a = 0; a < 3; ++a) out[LeafVertices::at(first, n, j, k, a)] = 0.0f;
+                for (int a = 0; a < 3; ++a) out[LeafVertices::at(first, n, j, k, a)] = 0;
             exact = false;
             continue;
         }
         const Triangle& t = g.triangles[shape.index];
         for (int k = 0; k < 3; ++k) {
             const Vec3& v = g.positions[t.v[k]];
-            out[LeafVertices::at(first, n, j, k, 0)] = float(v.x);
-            out[LeafVertices::at(first, n, j, k, 1)] = float(v.y);
-            out[LeafVertices::at(first, n, j, k, 2)] = float(v.z);
-            exact = exact && is_float(v.x) && is_float(v.y) && is_float(v.z);
+            out[LeafVertices::at(first, n, j, k, 0)] = T(v.x);
+            out[LeafVertices::at(first, n, j, k, 1)] = T(v.y);
+            out[LeafVertices::at(first, n, j, k, 2)] = T(v.z);
+            if constexpr (std::is_same_v<T, float>) exact = exact && is_float(v.x) && is_float(v.y) && is_float(v.z);
         }
     }
     return exact;
 }
 
-// The leaf-order vertices, written into `storage` once the BVH build is done
-// with the boxes there (sized for both); two threads copy half the nodes each.
-// A leaf whose vertices the copy cannot stand in for (another shape, or a
-// coordinate that is not a float) is marked Bvh4Node::kIndexedLeaf; when that is
-// every leaf, there is no copy.
-void copy_leaf_vertices(Scene& s, ReusableStorage& storage) {
-    const Geometry& g = s.geometry;
-    if (kLeafBlock == 1 || g.triangles.empty()) return;
-    NodeArray& nodes = s.accel.bvh.nodes;
-    const std::vector<uint32_t>& prims = s.accel.bvh.prims;
-    const size_t n = prims.size();
-    // The boxes' lifetime ends here: the bytes now hold floats.
-    float* const out = storage.emplace<float>(LeafVertices::floats_for(n));
-    std::fill(out + LeafVertices::floats_for(n) - 3, out + LeafVertices::floats_for(n), 0.0f);
-    // Returns the number of leaves the copy serves.
-    auto copy = [&g, &nodes, &prims, out](size_t begin, size_t end) {
+// Copies every leaf into `out` (LeafVertices::coordinates_for(prims) of T), two
+// threads half the nodes each for large trees, marking the leaves the copy cannot
+// stand in for Bvh4Node::kIndexedLeaf; returns the number of leaves it serves.
+template <class T>
+size_t copy_leaves(const Geometry& g, Bvh& bvh, T* out) {
+    const size_t end = LeafVertices::coordinates_for(bvh.prims.size());
+    std::fill(out + end - 3, out + end, T(0));
+    auto copy = [&g, &bvh, out](size_t begin, size_t stop) {
         size_t served = 0;
-        for (size_t k = begin; k < end; ++k) {
-            Bvh4Node& node = nodes[k];
+        for (size_t k = begin; k < stop; ++k) {
+            Bvh4Node& node = bvh.nodes[k];
             for (int i = 0; i < 4; ++i) {
                 if (!node.is_leaf(i) || node.child[i] == Bvh4Node::kEmpty) continue;
                 const uint32_t first = ~static_cast<uint32_t>(node.child[i]);
-                if (copy_leaf(g, prims, first, node.leaf_size(i), out))
+                if (copy_leaf(g, bvh.prims, first, node.leaf_size(i), out))
                     ++served;
                 else
                     node.count[i] |= Bvh4Node::kIndexedLeaf;
@@ -195,16 +189,30 @@ void copy_leaf_vertices(Scene& s, ReusableStorage& storage) {
         }
         return served;
     };
-    size_t served = 0;
-    if (n < (1u << 16)) {
-        served = copy(0, nodes.size());
-    } else {
-        const size_t half = nodes.size() / 2;
-        size_t second = 0;
-        in_parallel([&] { second = copy(half, nodes.size()); }, [&] { served = copy(0, half); });
-        served += second;
+    if (bvh.prims.size() < (1u << 16)) return copy(0, bvh.nodes.size());
+    const size_t half = bvh.nodes.size() / 2;
+    size_t first = 0, second = 0;
+    in_parallel([&] { second = copy(half, bvh.nodes.size()); }, [&] { first = copy(0, half); });
+    return first + second;
+}
+
+// The leaf-order vertices (LeafVertices, scene.h): in double for small scenes; in
+// float otherwise, written into `storage` once the BVH build is done with the
+// boxes there (sized for both), and kept only when some leaf is served.
+void copy_leaf_vertices(Scene& s, ReusableStorage& storage, const BvhBuildOptions& options) {
+    const Geometry& g = s.geometry;
+    if (kLeafBlock == 1 || g.triangles.empty()) return;
+    Bvh& bvh = s.accel.bvh;
+    const size_t n = bvh.prims.size();
+    if (n <= options.double_copy_max) {
+        ReusableStorage doubles(LeafVertices::coordinates_for(n) * sizeof(double));
+        double* const out = doubles.emplace<double>(LeafVertices::coordinates_for(n));
+        if (copy_leaves(g, bvh, out) > 0) s.accel.leaf_vertices = LeafVertices(std::move(doubles), out, n);
+        return;
     }
-    if (served > 0) s.accel.leaf_vertices = LeafVertices(std::move(storage), out, n);
+    // The boxes' lifetime ends here: the bytes now hold floats.
+    float* const out = storage.emplace<float>(LeafVertices::coordinates_for(n));
+    if (copy_leaves(g, bvh, out) > 0) s.accel.leaf_vertices = LeafVertices(std::move(storage), out, n);
 }
 
 // Builds everything, moving or releasing each mesh of `d` once it is copied.
@@ -230,7 +238,7 @@ Scene build(SceneDesc& d, const BvhBuildOptions& bvh) {
     // One allocation for the BVH's primitive boxes (boxes[id], triangles first) and
     // afterwards the leaf-order vertices that may take their place (copy_leaf_vertices).
     const size_t nboxes = ntri + d.spheres.size();
-    ReusableStorage storage(std::max(nboxes * sizeof(BuildBox), LeafVertices::floats_for(nboxes) * sizeof(float)));
+    ReusableStorage storage(std::max(nboxes * sizeof(BuildBox), LeafVertices::coordinates_for(nboxes) * sizeof(float)));
     BuildBox* const boxes = storage.emplace<BuildBox>(nboxes);
     for (size_t i = 0; i < d.meshes.size(); ++i) {
         MeshDesc& m = d.meshes[i];
@@ -252,7 +260,7 @@ Scene build(SceneDesc& d, const BvhBuildOptions& bvh) {
     add_boxes(g, g.count(ShapeKind::Triangle), boxes);
     const auto t0 = std::chrono::steady_clock::now();
     s.accel.bvh.build(boxes, g.bounded_count(), bvh);
-    copy_leaf_vertices(s, storage);
+    copy_leaf_vertices(s, storage, bvh);
     s.report.build_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return s;
 }
