@@ -16,6 +16,7 @@ struct RayPre {
     Ray ray;
     int kx, ky, kz;
     Real sx, sy, sz;
+    Real org_k[3];  // ray.org[kx], ray.org[ky], ray.org[kz]
 };
 
 inline RayPre prepare(const Ray& r) {
@@ -29,6 +30,9 @@ inline RayPre prepare(const Ray& r) {
     p.sx = r.dir[p.kx] / r.dir[p.kz];
     p.sy = r.dir[p.ky] / r.dir[p.kz];
     p.sz = Real(1) / r.dir[p.kz];
+    p.org_k[0] = r.org[p.kx];
+    p.org_k[1] = r.org[p.ky];
+    p.org_k[2] = r.org[p.kz];
     return p;
 }
 

@@ -125,7 +125,7 @@ inline Vertices4 indexed_vertices4(const Scene& s, const RayPre& p, const uint32
         const __m256i i64 = _mm256_cvtepu32_epi64(vi[k]);
         const __m256i i3 = _mm256_add_epi64(i64, _mm256_slli_epi64(i64, 1));  // Vec3 = 3 doubles
         for (int c = 0; c < 3; ++c)
-            r.v[k][c] = _mm256_sub_pd(_mm256_i64gather_pd(base + axis[c], i3, 8), _mm256_set1_pd(p.ray.org[axis[c]]));
+            r.v[k][c] = _mm256_sub_pd(_mm256_i64gather_pd(base + axis[c], i3, 8), _mm256_set1_pd(p.org_k[c]));
     }
     return r;
 }
@@ -144,7 +144,7 @@ inline Vertices4 leaf_vertices4(const T* leaf_vertices, const RayPre& p, uint32_
     for (int k = 0; k < 3; ++k)
         for (int c = 0; c < 3; ++c)
             r.v[k][c] = _mm256_sub_pd(load4(leaf_vertices + LeafVertices::at(first, n, j0, k, axis[c])),
-                                      _mm256_set1_pd(p.ray.org[axis[c]]));
+                                      _mm256_set1_pd(p.org_k[c]));
     return r;
 }
 
