@@ -96,7 +96,8 @@ TEST(Stats, JsonHasTheDocumentedFieldsWithPlausibleValues) {
     EXPECT_EQ(im.at("threads"), 2);
     EXPECT_EQ(im.at("cull"), true);
     EXPECT_EQ(im.at("max_recursion_depth"), 6);
-    EXPECT_DOUBLE_EQ(im.at("shadow_ray_epsilon").get<double>(), 1e-3);
+    // The scene's epsilon as rt::Real holds it (1e-3 rounded to float in float).
+    EXPECT_DOUBLE_EQ(im.at("shadow_ray_epsilon").get<double>(), double(rt::Real(1e-3)));
     for (const char* k : {"parse", "ply", "setup", "bvh", "render", "write"}) {
         const double s = im.at("seconds").at(k).get<double>();
         EXPECT_GE(s, 0) << k;
@@ -300,7 +301,9 @@ TEST(Stats, MeasurementSwitches) {
 
     const json eps = run_stats({"--epsilon-scale", "10"}, scene, dir);
     ASSERT_FALSE(eps.is_null());
-    EXPECT_DOUBLE_EQ(eps["images"][0]["shadow_ray_epsilon"].get<double>(), 1e-2);
+    // The Real epsilon times the (double) scale, rounded to Real (run.cpp).
+    EXPECT_DOUBLE_EQ(eps["images"][0]["shadow_ray_epsilon"].get<double>(),
+                     double(rt::Real(double(rt::Real(1e-3)) * 10)));
 
     // The BVH's shape never changes the picture, nor the rays traced.
     for (const std::vector<std::string>& bvh : std::vector<std::vector<std::string>>{
