@@ -38,9 +38,11 @@ struct BoxRay {
 // How far every box is padded for this ray, so that the box test is conservative
 // for the triangle and sphere tests as computed, not only for exact geometry: a
 // primitive test in Real may report a hit where the exact ray passes just outside
-// the primitive, and so outside its box. In double that error is far below the
-// float rounding of the boxes (0 here, and the double path is unchanged). In float
-// it is not: vertices are floats, boxes fit them exactly. The watertight test's
+// the primitive, and so outside its box. In double that error, some 1e-16 R, is
+// below the float rounding of the boxes around double vertices; around float ones
+// (PLY meshes) the boxes are tight, and no test has found a miss there: the pad is 0
+// and the double path computes what it always did. In float the error is 1e-7 R and
+// boxes fit the (float) vertices exactly: rays missed hits. The watertight test's
 // computed answer is the exact one for vertices moved by the rounding of
 // a - org, of the shear and of the edge functions, each a few u (float's unit
 // roundoff) times the largest coordinate of a - org, at most R = max|org| + the
