@@ -2,8 +2,8 @@
 //
 // Every MANIFEST.tsv row whose inputs are "complete" is rendered in process through
 // the library (load_scene -> build_scene -> render) and compared with its reference:
-// an image fails when more than 0.2% of its pixels differ by more than one level in
-// some channel. A Markdown table of all comparisons is printed once, after the last
+// an image fails when more than 0.2% of its pixels (0.15% in float, kFailPct) differ
+// by more than one level in some channel. A Markdown table of all comparisons is printed once, after the last
 // test. Rows with missing PLY files are run through ./raytracer, which must fail
 // cleanly: a one-line error naming the missing file, and no image.
 //
@@ -26,6 +26,7 @@
 #include <memory>
 #include <sstream>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "rt/error.h"
@@ -39,7 +40,10 @@ namespace fs = std::filesystem;
 
 namespace {
 
-constexpr double kFailPct = 0.2;    // % of pixels off by > 1 level that fails an image
+// % of pixels off by > 1 level that fails an image. Float has its own mark, set from
+// its measured figures with a margin (docs/precision.md): its worst image (a
+// cornellbox, off on its diagonals as in double) must not get worse unnoticed.
+constexpr double kFailPct = std::is_same_v<rt::Real, float> ? 0.15 : 0.2;
 constexpr double kTightPct = 0.05;  // the stricter mark reported in the table
 
 struct ManifestRow {

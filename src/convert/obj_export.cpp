@@ -11,14 +11,16 @@
 namespace rt {
 namespace {
 
-std::string num(double d) {
+// The shortest text that reads back as the same Real (a float's own digits, not
+// its double's: 0.6f is "0.6", not "0.6000000238418579").
+std::string num(Real d) {
     if (d == 0) return "0";
     char buf[64];
     const auto r = std::to_chars(buf, buf + sizeof buf, d);
     return std::string(buf, r.ptr);
 }
 
-std::string vec(const Vec3& v) { return num(double(v.x)) + " " + num(double(v.y)) + " " + num(double(v.z)); }
+std::string vec(const Vec3& v) { return num(v.x) + " " + num(v.y) + " " + num(v.z); }
 
 struct Bounds {
     Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
@@ -52,27 +54,27 @@ public:
 std::string mtl_material(const MaterialDesc& m, size_t index) {
     std::string s = "newmtl material_" + std::to_string(index + 1) + "\n";
     s += std::string("# ") + material_type_name(m.type) + "; exact values: Ks " + vec(m.specular) +
-         ", MirrorReflectance " + vec(m.mirror) + ", RefractionIndex " + num(double(m.refraction_index)) +
-         ", AbsorptionIndex " + num(double(m.absorption_index)) + ", AbsorptionCoefficient " +
-         vec(m.absorption_coefficient) + "\n";
+         ", MirrorReflectance " + vec(m.mirror) + ", RefractionIndex " + num(m.refraction_index) +
+         ", AbsorptionIndex " + num(m.absorption_index) + ", AbsorptionCoefficient " + vec(m.absorption_coefficient) +
+         "\n";
     s += "Ka " + vec(m.ambient) + "\n";
     s += "Kd " + vec(m.diffuse) + "\n";
     switch (m.type) {
         case MaterialType::Plain:
-            s += "Ks " + vec(m.specular) + "\nNs " + num(double(m.phong_exponent)) + "\nillum 2\n";
+            s += "Ks " + vec(m.specular) + "\nNs " + num(m.phong_exponent) + "\nillum 2\n";
             break;
         case MaterialType::Mirror:
         case MaterialType::Conductor:
             // MTL: illum 3 reflects with weight Ks.
-            s += "Ks " + vec(m.mirror) + "\nNs " + num(double(m.phong_exponent)) + "\nillum 3\n";
-            if (m.type == MaterialType::Conductor) s += "Ni " + num(double(m.refraction_index)) + "\n";
+            s += "Ks " + vec(m.mirror) + "\nNs " + num(m.phong_exponent) + "\nillum 3\n";
+            if (m.type == MaterialType::Conductor) s += "Ni " + num(m.refraction_index) + "\n";
             break;
         case MaterialType::Dielectric: {
             // MTL: illum 7 refracts with index Ni; Tf is the fraction transmitted per unit length.
             const Vec3& c = m.absorption_coefficient;
             const Vec3 tf{std::exp(-c.x), std::exp(-c.y), std::exp(-c.z)};
-            s += "Ks " + vec(m.specular) + "\nNs " + num(double(m.phong_exponent)) + "\nNi " +
-                 num(double(m.refraction_index)) + "\nTf " + vec(tf) + "\nillum 7\n";
+            s += "Ks " + vec(m.specular) + "\nNs " + num(m.phong_exponent) + "\nNi " + num(m.refraction_index) +
+                 "\nTf " + vec(tf) + "\nillum 7\n";
             break;
         }
     }
