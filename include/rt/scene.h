@@ -256,11 +256,10 @@ public:
     }
 
     LeafVertices() = default;
-    // `coordinates` (coordinates_for(triangles) of them, float or double) is the
-    // array `storage` holds.
+    // `coordinates` (coordinates_for(the BVH's primitive count) of them, float or
+    // double) is the array `storage` holds.
     template <class T>
-    LeafVertices(ReusableStorage&& storage, const T* coordinates, size_t triangles)
-        : storage_(std::move(storage)), triangles_(triangles) {
+    LeafVertices(ReusableStorage&& storage, const T* coordinates) : storage_(std::move(storage)) {
         static_assert(std::is_same_v<T, float> || std::is_same_v<T, double>);
         if constexpr (std::is_same_v<T, float>)
             floats_ = coordinates;
@@ -270,13 +269,11 @@ public:
     // The copy in its precision; null when it is in the other one, or there is none.
     const float* floats() const { return floats_; }
     const double* doubles() const { return doubles_; }
-    size_t triangles() const { return triangles_; }
 
 private:
     ReusableStorage storage_;
     const float* floats_ = nullptr;
     const double* doubles_ = nullptr;
-    size_t triangles_ = 0;
 };
 
 // Over primitive ids [0, geometry.bounded_count()).

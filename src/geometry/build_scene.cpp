@@ -207,12 +207,12 @@ void copy_leaf_vertices(Scene& s, ReusableStorage& storage, const BvhBuildOption
     if (n <= options.double_copy_max) {
         ReusableStorage doubles(LeafVertices::coordinates_for(n) * sizeof(double));
         double* const out = doubles.emplace<double>(LeafVertices::coordinates_for(n));
-        if (copy_leaves(g, bvh, out) > 0) s.accel.leaf_vertices = LeafVertices(std::move(doubles), out, n);
+        if (copy_leaves(g, bvh, out) > 0) s.accel.leaf_vertices = LeafVertices(std::move(doubles), out);
         return;
     }
     // The boxes' lifetime ends here: the bytes now hold floats.
     float* const out = storage.emplace<float>(LeafVertices::coordinates_for(n));
-    if (copy_leaves(g, bvh, out) > 0) s.accel.leaf_vertices = LeafVertices(std::move(storage), out, n);
+    if (copy_leaves(g, bvh, out) > 0) s.accel.leaf_vertices = LeafVertices(std::move(storage), out);
 }
 
 // Builds everything, moving or releasing each mesh of `d` once it is copied.

@@ -106,13 +106,14 @@ struct Integrator {
             const Vec3 e = light.intensity / d2;  // irradiance E = I / d^2 (spec 2.8)
             const Vec3 h = normalize(l + to_eye);
             const Real ndoth = std::fmax(Real(0), dot(n, h));
-            const Vec3 added = (m.diffuse * ndotl + m.specular * phong_pow(ndoth, m.phong_exponent)) * e;
+            const Real lobe = phong_pow(ndoth, m.phong_exponent);
+            const Vec3 added = (m.diffuse * ndotl + m.specular * lobe) * e;
             c += added;
             if (lt) {
                 lt->irradiance = e;
                 lt->ndoth = ndoth;
                 lt->diffuse = m.diffuse * ndotl * e;
-                lt->specular = m.specular * phong_pow(ndoth, m.phong_exponent) * e;
+                lt->specular = m.specular * lobe * e;
                 lt->added = added;
             }
         }
