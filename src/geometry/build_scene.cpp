@@ -240,12 +240,11 @@ Scene build(SceneDesc& d, const BvhBuildOptions& bvh) {
     const size_t nboxes = ntri + d.spheres.size();
     ReusableStorage storage(std::max(nboxes * sizeof(BuildBox), LeafVertices::coordinates_for(nboxes) * sizeof(float)));
     BuildBox* const boxes = storage.emplace<BuildBox>(nboxes);
-    for (size_t i = 0; i < d.meshes.size(); ++i) {
-        MeshDesc& m = d.meshes[i];
+    for (MeshDesc& m : d.meshes) {
         s.names.meshes.push_back({static_cast<uint32_t>(g.triangles.size()), m.triangle_object, m.id, {}});
         add_mesh(g, s.report, m, boxes, s.names.meshes.back().skipped);
-        std::vector<Vec3>().swap(d.meshes[i].positions);
-        std::vector<uint32_t>().swap(d.meshes[i].indices);
+        std::vector<Vec3>().swap(m.positions);
+        std::vector<uint32_t>().swap(m.indices);
     }
     for (const SphereDesc& sp : d.spheres) {
         g.spheres.push_back({sp.center, sp.radius, sp.material});
