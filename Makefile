@@ -1,7 +1,7 @@
 # raytracer: a recursive (Whitted) ray tracer for the CENG 795 JSON scene format.
 #   make            build ./raytracer
-#   make test       build and run the unit, property and conformance tests
-#   make PRECISION=float   build with single-precision geometry and shading
+#   make test       build and run the unit, property and conformance tests, once for each
+#                   precision (double, then float: ./raytracer --precision float)
 #   make CXXFLAGS="-O2 -g"  choose optimisation and debug flags; the flags below that the
 #                           code needs are appended to any CXXFLAGS, CPPFLAGS or LDLIBS
 #                           given on the command line (override), never replaced
@@ -25,30 +25,33 @@ ifneq ($(wildcard third_party/stb/stb_image_write.h),)
   override CPPFLAGS += -Ithird_party
 endif
 
-ifeq ($(PRECISION),float)
-  override CPPFLAGS += -DRT_REAL_FLOAT
-  BUILD := build/float
-else
-  BUILD := build/double
-endif
-# Objects of another target than this CPU live beside the native ones (build/double-x86-64).
-ifneq ($(MARCH),native)
-  BUILD := $(BUILD)-$(MARCH)
-endif
+# Objects live in build/<target>: build/native by default, build/x86-64 for MARCH=x86-64.
+BUILD := build/$(MARCH)
+
+# One program, both precisions (docs/precision.md). The library is compiled twice: as
+# written, with Real = double, in namespace rt (objects in $(BUILD)/src); and with
+# Real = float (-DRT_REAL_FLOAT), every token `rt` renamed rt_float (objects in
+# $(BUILD)/float/src), so that both copies link into one program without a clash. main.cpp
+# picks one copy per run (--precision); nothing else branches on the precision. The only
+# code outside namespace rt is stb's (stb_impl.cpp), compiled once, in the double copy.
+FLOAT_CPPFLAGS := -DRT_REAL_FLOAT -Drt=rt_float
 
 # Every src/**/*.cpp is library code except program entry points (main.cpp, *_main.cpp).
 LIB_SRC  := $(filter-out src/main.cpp %_main.cpp,$(shell find src -name '*.cpp' | sort))
 LIB_OBJ  := $(LIB_SRC:%.cpp=$(BUILD)/%.o)
-# The test binary is built from tests/*.cpp only; subfolders (fuzz targets, benchmarks) have their own rules.
+LIB_FLOAT_OBJ := $(patsubst %.cpp,$(BUILD)/float/%.o,$(filter-out src/image/stb_impl.cpp,$(LIB_SRC)))
+# The test programs are built from tests/*.cpp only; subfolders (fuzz targets, benchmarks)
+# have their own rules. The same tests run against each precision's library.
 TEST_SRC := $(sort $(wildcard tests/*.cpp))
 TEST_OBJ := $(TEST_SRC:%.cpp=$(BUILD)/%.o)
+TEST_FLOAT_OBJ := $(TEST_SRC:%.cpp=$(BUILD)/float/%.o)
 
 .PHONY: all test unit clean
 all: raytracer
 
-# build/precision names the precision ./raytracer was last linked with; it changes
-# (and forces a relink) only when PRECISION does.
-build/precision: FORCE
+# build/target names the object folder ./raytracer was last linked from; it changes
+# (and forces a relink) only when MARCH does.
+build/target: FORCE
 	@mkdir -p build
 	@echo '$(BUILD)' | cmp -s - $@ || echo '$(BUILD)' > $@
 
@@ -61,8 +64,9 @@ $(BUILD)/config: FORCE
 	@printf '%s\n' '$(CXX) $(CPPFLAGS) $(CXXFLAGS)' '$(LDLIBS)' | cmp -s - $@ || \
 	    printf '%s\n' '$(CXX) $(CPPFLAGS) $(CXXFLAGS)' '$(LDLIBS)' > $@
 
-raytracer: $(BUILD)/src/main.o $(BUILD)/librt.a build/precision $(BUILD)/config
-	$(CXX) $(CXXFLAGS) -o $@ $(filter-out build/precision $(BUILD)/config,$^) $(LDLIBS)
+# The float library first: its few references to stb are resolved by librt.a after it.
+raytracer: $(BUILD)/src/main.o $(BUILD)/librt_float.a $(BUILD)/librt.a build/target $(BUILD)/config
+	$(CXX) $(CXXFLAGS) -o $@ $(filter-out build/target $(BUILD)/config,$^) $(LDLIBS)
 
 .PHONY: FORCE
 FORCE:
@@ -71,17 +75,33 @@ $(BUILD)/librt.a: $(LIB_OBJ)
 	@rm -f $@
 	ar rcs $@ $^
 
+$(BUILD)/librt_float.a: $(LIB_FLOAT_OBJ)
+	@rm -f $@
+	ar rcs $@ $^
+
 $(BUILD)/%.o: %.cpp $(BUILD)/config
 	@mkdir -p $(dir $@)
 	$(CXX) $(CPPFLAGS) $(CXXFLAGS) -c $< -o $@
 
+# Make prefers this rule to the one above for $(BUILD)/float/... (the shorter stem).
+$(BUILD)/float/%.o: %.cpp $(BUILD)/config
+	@mkdir -p $(dir $@)
+	$(CXX) $(CPPFLAGS) $(FLOAT_CPPFLAGS) $(CXXFLAGS) -c $< -o $@
+
 $(BUILD)/rt_tests: $(TEST_OBJ) $(BUILD)/librt.a $(BUILD)/config
 	$(CXX) $(CXXFLAGS) -o $@ $(filter-out $(BUILD)/config,$^) -lgtest $(LDLIBS)
 
+$(BUILD)/rt_tests_float: $(TEST_FLOAT_OBJ) $(BUILD)/librt_float.a $(BUILD)/librt.a $(BUILD)/config
+	$(CXX) $(CXXFLAGS) -o $@ $(filter-out $(BUILD)/config,$^) -lgtest $(LDLIBS)
+
 # Tests read the course files from ../shared (or $$RT_SHARED_DIR); the CLI tests
-# run ./raytracer, so it is built first.
-test: raytracer $(BUILD)/rt_tests
-	$(BUILD)/rt_tests
+# run ./raytracer (with --precision of the suite's own), so it is built first.
+# TEST_PRECISIONS=float runs one suite only.
+TEST_PRECISIONS ?= double float
+test: raytracer $(if $(filter double,$(TEST_PRECISIONS)),$(BUILD)/rt_tests) \
+                $(if $(filter float,$(TEST_PRECISIONS)),$(BUILD)/rt_tests_float)
+	$(if $(filter double,$(TEST_PRECISIONS)),@echo "== the tests in double precision" && $(BUILD)/rt_tests)
+	$(if $(filter float,$(TEST_PRECISIONS)),@echo "== the tests in float precision" && $(BUILD)/rt_tests_float)
 
 clean:
 	rm -rf build raytracer
@@ -104,8 +124,8 @@ endef
 # NAME linked from $(BUILD)/MAIN.o and the library, `make clean` removes it, and the tests
 # under the sanitizers (check-asan, mk/check.mk, included before it) get a sanitized NAME too.
 define helper_program
-$(1): $$(BUILD)/$(2).o $$(BUILD)/librt.a build/precision $$(BUILD)/config
-	$$(CXX) $$(CXXFLAGS) -o $$@ $$(filter-out build/precision $$(BUILD)/config,$$^) $$(LDLIBS)
+$(1): $$(BUILD)/$(2).o $$(BUILD)/librt.a build/target $$(BUILD)/config
+	$$(CXX) $$(CXXFLAGS) -o $$@ $$(filter-out build/target $$(BUILD)/config,$$^) $$(LDLIBS)
 
 .PHONY: clean-$(1)
 clean: clean-$(1)
@@ -124,4 +144,4 @@ endef
 # Further targets (benchmarks, sanitizers, fuzzing, converters) live in mk/*.mk.
 -include $(sort $(wildcard mk/*.mk))
 
--include $(LIB_OBJ:.o=.d) $(TEST_OBJ:.o=.d) $(BUILD)/src/main.d
+-include $(LIB_OBJ:.o=.d) $(LIB_FLOAT_OBJ:.o=.d) $(TEST_OBJ:.o=.d) $(TEST_FLOAT_OBJ:.o=.d) $(BUILD)/src/main.d

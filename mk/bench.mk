@@ -23,7 +23,7 @@ bench-quick: raytracer $(BENCH_GEN)
 #   make bench-bvh BVH_SCENE=build/bench/scenes/knot_4m_plain.json
 BVH_BENCH := build/bench/bvh_bench
 BVH_SCENE ?= build/bench/scenes/knot_4m_plain.json
-$(BVH_BENCH): tests/bench/bvh_bench.cpp $(BUILD)/librt.a build/precision
+$(BVH_BENCH): tests/bench/bvh_bench.cpp $(BUILD)/librt.a
 	@mkdir -p $(dir $@)
 	$(CXX) $(CPPFLAGS) $(CXXFLAGS) -o $@ $< $(BUILD)/librt.a $(LDLIBS)
 

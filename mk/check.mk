@@ -8,7 +8,7 @@
 #   make fuzz-build    just build the fuzz targets
 #   make memcheck      valgrind memcheck on small renders: no errors, no leaks, in build/memcheck
 #
-# Each build lives in its own folder and never touches build/double or ./raytracer.
+# Each build lives in its own folder and never touches build/native or ./raytracer.
 
 .PHONY: check-asan fuzz fuzz-build fuzz-corpus memcheck
 
@@ -31,6 +31,7 @@ build/check-scene/all_features.json: tests/fuzz/seeds/scene/all_features.json te
 ASAN_DIR      := build/asan
 ASAN_CXXFLAGS := -O1 -g -march=native -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all $(CHECK_WARN)
 ASAN_LIB_OBJ  := $(LIB_SRC:%.cpp=$(ASAN_DIR)/%.o)
+ASAN_FLOAT_OBJ := $(LIB_FLOAT_OBJ:$(BUILD)/%=$(ASAN_DIR)/%)
 ASAN_TEST_OBJ := $(TEST_SRC:%.cpp=$(ASAN_DIR)/%.o)
 ASAN_ENV      := ASAN_OPTIONS=detect_leaks=1:abort_on_error=0:strict_string_checks=1:detect_stack_use_after_return=1 \
                  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
@@ -43,13 +44,21 @@ $(ASAN_DIR)/%.o: %.cpp
 	@mkdir -p $(dir $@)
 	$(CXX) $(CPPFLAGS) $(ASAN_CXXFLAGS) -c $< -o $@
 
+$(ASAN_DIR)/float/%.o: %.cpp
+	@mkdir -p $(dir $@)
+	$(CXX) $(CPPFLAGS) $(FLOAT_CPPFLAGS) $(ASAN_CXXFLAGS) -c $< -o $@
+
 $(ASAN_DIR)/librt.a: $(ASAN_LIB_OBJ)
+	@rm -f $@
+	ar rcs $@ $^
+
+$(ASAN_DIR)/librt_float.a: $(ASAN_FLOAT_OBJ)
 	@rm -f $@
 	ar rcs $@ $^
 
 # The CLI tests run "./raytracer" from the folder the test program starts in, so the
 # sanitized renderer sits beside the sanitized test program and the tests start there.
-$(ASAN_DIR)/raytracer: $(ASAN_DIR)/src/main.o $(ASAN_DIR)/librt.a
+$(ASAN_DIR)/raytracer: $(ASAN_DIR)/src/main.o $(ASAN_DIR)/librt_float.a $(ASAN_DIR)/librt.a
 	$(CXX) $(ASAN_CXXFLAGS) -o $@ $^ $(LDLIBS)
 
 $(ASAN_DIR)/rt_tests: $(ASAN_TEST_OBJ) $(ASAN_DIR)/librt.a
@@ -60,6 +69,7 @@ check-asan: $(ASAN_DIR)/raytracer $(ASAN_DIR)/rt_tests build/check-scene/all_fea
 	    ./rt_tests --gtest_filter='$(CHECK_ASAN_FILTER)'
 	@rm -rf $(ASAN_DIR)/renders && mkdir -p $(ASAN_DIR)/renders
 	$(ASAN_ENV) $(ASAN_DIR)/raytracer -j 2 -o $(ASAN_DIR)/renders $(CHECK_SCENES)
+	$(ASAN_ENV) $(ASAN_DIR)/raytracer --precision float -j 2 -o $(ASAN_DIR)/renders $(CHECK_SCENES)
 	@echo "check-asan: tests and renders clean under ASan + UBSan"
 
 # ---- libFuzzer --------------------------------------------------------------------------
@@ -117,6 +127,7 @@ fuzz: fuzz-build fuzz-corpus
 MEMCHECK_DIR      := build/memcheck
 MEMCHECK_CXXFLAGS := -O1 -g -march=native -mno-avx512f $(CHECK_WARN)
 MEMCHECK_LIB_OBJ  := $(LIB_SRC:%.cpp=$(MEMCHECK_DIR)/%.o)
+MEMCHECK_FLOAT_OBJ := $(LIB_FLOAT_OBJ:$(BUILD)/%=$(MEMCHECK_DIR)/%)
 # Small renders: our showcase, the all-features scene (PLY meshes) and the course's
 # simple.json (inline meshes, spheres).
 MEMCHECK_SCENES   := $(abspath scenes/showcase.json) build/check-scene/all_features.json \
@@ -126,11 +137,19 @@ $(MEMCHECK_DIR)/%.o: %.cpp
 	@mkdir -p $(dir $@)
 	$(CXX) $(CPPFLAGS) $(MEMCHECK_CXXFLAGS) -c $< -o $@
 
+$(MEMCHECK_DIR)/float/%.o: %.cpp
+	@mkdir -p $(dir $@)
+	$(CXX) $(CPPFLAGS) $(FLOAT_CPPFLAGS) $(MEMCHECK_CXXFLAGS) -c $< -o $@
+
 $(MEMCHECK_DIR)/librt.a: $(MEMCHECK_LIB_OBJ)
 	@rm -f $@
 	ar rcs $@ $^
 
-$(MEMCHECK_DIR)/raytracer: $(MEMCHECK_DIR)/src/main.o $(MEMCHECK_DIR)/librt.a
+$(MEMCHECK_DIR)/librt_float.a: $(MEMCHECK_FLOAT_OBJ)
+	@rm -f $@
+	ar rcs $@ $^
+
+$(MEMCHECK_DIR)/raytracer: $(MEMCHECK_DIR)/src/main.o $(MEMCHECK_DIR)/librt_float.a $(MEMCHECK_DIR)/librt.a
 	$(CXX) $(MEMCHECK_CXXFLAGS) -o $@ $^ $(LDLIBS)
 
 memcheck: $(MEMCHECK_DIR)/raytracer build/check-scene/all_features.json
@@ -138,8 +157,11 @@ memcheck: $(MEMCHECK_DIR)/raytracer build/check-scene/all_features.json
 	valgrind --tool=memcheck --error-exitcode=99 --leak-check=full --show-leak-kinds=all \
 	    --errors-for-leak-kinds=all --track-origins=yes \
 	    $(MEMCHECK_DIR)/raytracer -j 2 -o $(MEMCHECK_DIR)/renders $(MEMCHECK_SCENES)
+	valgrind --tool=memcheck --error-exitcode=99 --leak-check=full --show-leak-kinds=all \
+	    --errors-for-leak-kinds=all --track-origins=yes \
+	    $(MEMCHECK_DIR)/raytracer --precision float -j 2 -o $(MEMCHECK_DIR)/renders $(MEMCHECK_SCENES)
 	@echo "memcheck: no errors, no leaks"
 
--include $(ASAN_LIB_OBJ:.o=.d) $(ASAN_TEST_OBJ:.o=.d) $(ASAN_DIR)/src/main.d
+-include $(ASAN_LIB_OBJ:.o=.d) $(ASAN_FLOAT_OBJ:.o=.d) $(ASAN_TEST_OBJ:.o=.d) $(ASAN_DIR)/src/main.d
 -include $(FUZZ_LIB_OBJ:.o=.d) $(FUZZ_DIR)/tests/fuzz/fuzz_scene.d $(FUZZ_DIR)/tests/fuzz/fuzz_ply.d
--include $(MEMCHECK_LIB_OBJ:.o=.d) $(MEMCHECK_DIR)/src/main.d
+-include $(MEMCHECK_LIB_OBJ:.o=.d) $(MEMCHECK_FLOAT_OBJ:.o=.d) $(MEMCHECK_DIR)/src/main.d

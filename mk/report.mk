@@ -5,33 +5,24 @@
 #   make report                       3 runs per configuration (about 10 minutes on 2 cores)
 #   make report-quick                 1 run, fewer BVH variants, no 1M-triangle mesh (about 2 minutes)
 #   make report REPORT_ARGS="--runs 5 --threads 1"     (see report.py --help)
-# The double and float renderers are linked into build/report/ (./raytracer is not touched);
-# the course's files come from ../shared or $$RT_SHARED_DIR.
+# One raytracer measures both precisions (--precision); the course's files come from
+# ../shared or $$RT_SHARED_DIR.
 REPORT_WORK    := build/report
 REPORT_IMGDIFF := $(REPORT_WORK)/imgdiff
 REPORT_GEN     := build/bench/gen_mesh
 REPORT_ARGS    ?=
-REPORT_RUN      = python3 tests/report/report.py --bin-double $(REPORT_WORK)/raytracer-double \
-                  --bin-float $(REPORT_WORK)/raytracer-float --imgdiff $(REPORT_IMGDIFF) \
+REPORT_RUN      = python3 tests/report/report.py --bin ./raytracer --imgdiff $(REPORT_IMGDIFF) \
                   --gen-mesh $(REPORT_GEN) --work $(REPORT_WORK) --out report $(if $(RT_SHARED_DIR),--shared $(RT_SHARED_DIR))
 
 $(REPORT_IMGDIFF): tests/report/imgdiff.cpp
 	@mkdir -p $(dir $@)
 	$(CXX) -O2 -std=c++17 -Wall -Wextra -o $@ $< -lstb
 
-# Both precisions from their own object folders, by a sub-make each (PRECISION picks BUILD).
-.PHONY: report report-quick report-bins
-report-bins:
-	@$(MAKE) --no-print-directory PRECISION=double build/double/librt.a build/double/src/main.o
-	@$(MAKE) --no-print-directory PRECISION=float build/float/librt.a build/float/src/main.o
-	@mkdir -p $(REPORT_WORK)
-	$(CXX) $(CXXFLAGS) -o $(REPORT_WORK)/raytracer-double build/double/src/main.o build/double/librt.a $(LDLIBS)
-	$(CXX) $(CXXFLAGS) -o $(REPORT_WORK)/raytracer-float build/float/src/main.o build/float/librt.a $(LDLIBS)
-
-report: report-bins $(REPORT_IMGDIFF) $(REPORT_GEN)
+.PHONY: report report-quick
+report: raytracer $(REPORT_IMGDIFF) $(REPORT_GEN)
 	@mkdir -p report
 	$(REPORT_RUN) $(REPORT_ARGS)
 
-report-quick: report-bins $(REPORT_IMGDIFF)
+report-quick: raytracer $(REPORT_IMGDIFF)
 	@mkdir -p report
 	$(REPORT_RUN) --quick $(REPORT_ARGS)

@@ -1,105 +1,28 @@
-// raytracer: reads the command line, renders every camera of each scene file
-// (rt::run_scenes) and writes --stats; or traces one pixel (--trace, rt::run_trace).
-#include <cstdio>
-#include <string>
-#include <vector>
+// raytracer: runs the double or the float copy of the program (rt/program.h), as
+// --precision says; that copy parses and checks every option, this one included.
+#include <cstring>
 
-#include "rt/atomic_file.h"
-#include "rt/cli.h"
-#include "rt/error.h"
-#include "rt/image.h"
-#include "rt/run.h"
+#include "rt/program.h"
 
 namespace {
 
-const rt::cli::Program kProgram{
-    "raytracer", "raytracer 1.0",
-    "usage: raytracer [-o DIR] [-j N] [--cull|--no-cull] [--rounding truncate|nearest] [--stats FILE] [-q] "
-    "scene.json|scene.xml...\n"
-    "       raytracer --trace X,Y [--camera N] [--trace-json FILE] [options] scene.json|scene.xml",
-    "Renders every camera of each scene file (JSON, or the course's older XML format when the\n"
-    "name ends in .xml) to the image its ImageName names: PNG (.png) or binary PPM (.ppm).\n",
-    "exit status: 0 all images written, 1 bad input or an image could not be written, 2 usage error"};
+// True when the last --precision on the command line (before a "--") asks for float.
+// Anything else, a bad value included, goes to the double copy, whose parser reports it.
+bool wants_float(int argc, char** argv) {
+    bool f = false;
+    for (int i = 1; i < argc; ++i) {
+        const char* a = argv[i];
+        if (std::strcmp(a, "--") == 0) break;
+        if (std::strcmp(a, "--precision") == 0 && i + 1 < argc)
+            f = std::strcmp(argv[++i], "float") == 0;
+        else if (std::strncmp(a, "--precision=", 12) == 0)
+            f = std::strcmp(a + 12, "float") == 0;
+    }
+    return f;
+}
 
 }  // namespace
 
 int main(int argc, char** argv) {
-    namespace cli = rt::cli;
-    rt::RunOptions o;
-    std::vector<std::string> scenes;
-    std::string stats_path;
-    rt::PixelTraceRequest request;
-    bool trace = false, camera_given = false;
-    CLI::App app;
-    cli::setup(app, kProgram);
-    app.add_option("-o,--output-dir", o.output_dir, "write relative image names under DIR (created if needed)")
-        ->type_name("DIR");
-    cli::add_whole(app, "-j,--threads", "N", "render with N threads (default: all hardware threads)", o.render.threads,
-                   1, 1024);
-    app.add_flag("--cull,!--no-cull", o.render.cull, "back-face culling of camera and reflection rays (default: on)");
-    cli::add_choice(app, "--rounding", "truncate (default, as the reference images) or nearest", o.render.rounding,
-                    {{"truncate", rt::Rounding::Truncate}, {"nearest", rt::Rounding::Nearest}});
-    cli::add_text(app, "--stats", "FILE", "write figures per image (times, rays by kind, BVH, memory) to FILE as JSON",
-                  stats_path, "a file name");
-    cli::add_value(app, "--trace", "X,Y",
-                   "print the ray tree of pixel X,Y (column, row from the top left); render nothing",
-                   [&trace, &request](const std::string& v) {
-                       const size_t comma = v.find(',');
-                       if (comma == std::string::npos) cli::usage_error("--trace needs X,Y, got '" + v + "'");
-                       request.x = int(cli::whole_number("--trace X", v.substr(0, comma), 0, 1 << 30));
-                       request.y = int(cli::whole_number("--trace Y", v.substr(comma + 1), 0, 1 << 30));
-                       trace = true;
-                   });
-    cli::add_value(app, "--camera", "N", "--trace: the camera (1-based, default 1)",
-                   [&request, &camera_given](const std::string& v) {
-                       request.camera = size_t(cli::whole_number("--camera", v, 1, 1 << 30));
-                       camera_given = true;
-                   });
-    cli::add_text(app, "--trace-json", "FILE", "--trace: also write the ray tree to FILE as JSON", request.json_path,
-                  "a file name");
-    app.add_flag("-q,--quiet", o.quiet, "print errors only (and no progress line, which is shown only on a terminal)");
-    app.option_defaults()->group("for measurements (the defaults are the scene's values and the tuned BVH)");
-    cli::add_whole(app, "--max-depth", "N", "override every scene's MaxRecursionDepth (0..10000)", o.max_depth, 0,
-                   10000);
-    cli::add_number(app, "--epsilon-scale", "F", "multiply every scene's ShadowRayEpsilon by F (> 0)", o.epsilon_scale,
-                    "a positive number", [](double f) { return f > 0 && f < 1e30; });
-    cli::add_whole(app, "--bvh-leaf", "N", "largest BVH leaf (1..1024, default 8)", o.bvh.max_leaf, 1, 1024);
-    cli::add_whole(app, "--bvh-bins", "N", "SAH bins per axis (2..16, default 16)", o.bvh.bins, 2, 16);
-    cli::add_choice(app, "--bvh-split", "sah (default) or median (object-median splits, no SAH)", o.bvh.sah,
-                    {{"sah", true}, {"median", false}});
-    cli::add_number(app, "--bvh-cost", "F",
-                    "SAH cost of a node visit relative to a leaf block test (0.1..100, default 1)",
-                    o.bvh.traversal_cost, "a number from 0.1 to 100", [](double f) { return f >= 0.1 && f <= 100; });
-    cli::add_whole(app, "--bvh-block", "N",
-                   "primitives a leaf block holds in the SAH cost (1..16, default: as many as one leaf test takes, "
-                   "4 with AVX2)",
-                   o.bvh.block, 1, 16);
-    app.add_option("scenes", scenes);
-    app.final_callback([&] {
-        if (scenes.empty()) cli::usage_error("no scene file given");
-        if (trace && scenes.size() > 1) cli::usage_error("--trace takes one scene file");
-        if (!trace && (camera_given || !request.json_path.empty()))
-            cli::usage_error("--camera and --trace-json need --trace");
-    });
-    if (const auto status = cli::parse(app, kProgram, argc, argv)) return *status;
-
-    if (trace) {
-        try {
-            return rt::run_trace(scenes[0], o, request);
-        } catch (const rt::UsageError& e) {
-            return cli::report_usage_error(kProgram, e.what());
-        }
-    }
-
-    const rt::RunReport report = rt::run_scenes(scenes, o);
-    bool ok = report.ok;
-    if (!stats_path.empty()) {
-        try {
-            rt::write_file_atomic(stats_path, rt::stats_json(report.images, kProgram.version));
-        } catch (const rt::InputError& e) {
-            std::fprintf(stderr, "%s\n", e.what());
-            ok = false;
-        }
-    }
-    return ok ? 0 : 1;
+    return wants_float(argc, argv) ? rt_float::raytracer_cli(argc, argv) : rt::raytracer_cli(argc, argv);
 }

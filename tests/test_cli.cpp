@@ -262,6 +262,8 @@ TEST(Cli, EveryOptionTakesItsValueInEverySpelling) {
         {{"--bvh-split", "median"}, {"--bvh-split=median"}},
         {{"--bvh-cost", "2"}, {"--bvh-cost=2"}},
         {{"--bvh-block", "2"}, {"--bvh-block=2"}},
+        {{"--precision", "float"}, {"--precision=float"}},
+        {{"--precision", "double"}, {"--precision=double"}},
     };
     for (const auto& same : spellings) {
         std::vector<std::string> stats;
@@ -302,8 +304,8 @@ TEST(Cli, UsageErrorsAreOneLinePlusTheUsage) {
     TempDir tmp;
     write_scene(tmp.path(), "scene.json", sample_scene());
     const std::string usage =
-        "usage: raytracer [-o DIR] [-j N] [--cull|--no-cull] [--rounding truncate|nearest] [--stats FILE] [-q] "
-        "scene.json|scene.xml...\n"
+        "usage: raytracer [-o DIR] [-j N] [--precision double|float] [--cull|--no-cull] [--rounding truncate|nearest] "
+        "[--stats FILE] [-q] scene.json|scene.xml...\n"
         "       raytracer --trace X,Y [--camera N] [--trace-json FILE] [options] scene.json|scene.xml";
     const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
         {{"--no-such-option", "scene.json"}, "unknown option '--no-such-option'"},
@@ -315,6 +317,8 @@ TEST(Cli, UsageErrorsAreOneLinePlusTheUsage) {
         {{"--epsilon-scale", "0", "scene.json"}, "--epsilon-scale needs a positive number, got '0'"},
         {{"--bvh-cost", "200", "scene.json"}, "--bvh-cost needs a number from 0.1 to 100, got '200'"},
         {{"--bvh-split", "fast", "scene.json"}, "--bvh-split takes sah or median, got 'fast'"},
+        {{"--precision", "half", "scene.json"}, "--precision takes double or float, got 'half'"},
+        {{"--precision=Float", "scene.json"}, "--precision takes double or float, got 'Float'"},
         {{"scene.json", "-o"}, "option --output-dir needs a value"},
         {{"-q"}, "no scene file given"},
     };
@@ -331,13 +335,43 @@ TEST(Cli, HelpNamesEveryOption) {
     RunResult r = run_raytracer({"--help"});
     ASSERT_EQ(r.exit_code, 0) << dump(r);
     EXPECT_EQ(r.err, "");
-    for (const char* option : {"-o, --output-dir DIR", "-j, --threads N", "--cull, --no-cull", "--rounding MODE",
-                               "--stats FILE", "-q, --quiet", "-h, --help", "--version", "--max-depth N",
-                               "--epsilon-scale F", "--bvh-leaf N", "--bvh-bins N", "--bvh-split MODE", "--bvh-cost F",
-                               "--bvh-block N", "--trace X,Y", "--camera N", "--trace-json FILE", "exit status"})
+    for (const char* option :
+         {"-o, --output-dir DIR", "-j, --threads N", "--cull, --no-cull", "--rounding MODE",   "--stats FILE",
+          "-q, --quiet",          "-h, --help",      "--version",         "--max-depth N",     "--epsilon-scale F",
+          "--bvh-leaf N",         "--bvh-bins N",    "--bvh-split MODE",  "--bvh-cost F",      "--bvh-block N",
+          "--precision MODE",     "--trace X,Y",     "--camera N",        "--trace-json FILE", "exit status"})
         EXPECT_TRUE(contains(r.out, option)) << option << dump(r);
     RunResult v = run_raytracer({"--version"});
     EXPECT_EQ(v.out, "raytracer 1.0\n") << dump(v);
+}
+
+// One program, two precisions: --precision picks the copy of the library that renders
+// (src/main.cpp), the last --precision counts, and the image line and --stats name it.
+TEST(Cli, PrecisionPicksTheRendererAndSaysWhich) {
+    TempDir tmp;
+    write_scene(tmp.path(), "scene.json", sample_scene("s.png", "8 8"));
+    const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
+        {{}, "double"},  // no --precision at all
+        {{"--precision", "double"}, "double"},
+        {{"--precision", "float"}, "float"},
+        {{"--precision=float"}, "float"},
+        {{"--precision", "float", "--precision", "double"}, "double"},
+        {{"--precision=double", "--precision", "float"}, "float"},
+    };
+    for (const auto& [options, precision] : cases) {
+        std::vector<std::string> args = options;
+        args.insert(args.end(), {"--stats", "st.json", "scene.json"});
+        // Without raytracer_args: these runs choose their own precision.
+        RunResult r = run_program(raytracer_path(), args, tmp.path());
+        ASSERT_EQ(r.exit_code, 0) << join(args) << dump(r);
+        EXPECT_EQ(r.err.rfind("s.png: 8x8, " + precision + ", ", 0), 0u) << join(args) << dump(r);
+        EXPECT_EQ(json::parse(read_text(tmp / "st.json"))["precision"], precision) << join(args);
+    }
+    // A scene file named like an option's value is still a scene file after "--".
+    write_scene(tmp.path(), "float", sample_scene("f.png", "8 8"));
+    RunResult r = run_program(raytracer_path(), {"-q", "--stats", "st.json", "--", "float"}, tmp.path());
+    ASSERT_EQ(r.exit_code, 0) << dump(r);
+    EXPECT_EQ(json::parse(read_text(tmp / "st.json"))["precision"], "double");
 }
 
 TEST(Cli, DoubleDashEndsTheOptions) {

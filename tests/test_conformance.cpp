@@ -10,7 +10,8 @@
 // Environment:
 //   RT_SHARED_DIR        the course's shared folder (default ../shared)
 //   RT_CONFORMANCE_OUT   a folder to receive our renders and diff images (pixels off
-//                        by more than one level in red over the dimmed reference)
+//                        by more than one level in red over the dimmed reference),
+//                        in its subfolder double/ or float/ (the suite's precision)
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -242,13 +243,14 @@ rt::Image diff_image(const rt::Image& ours, const rt::Image& ref) {
 void write_eyeball_output(const ManifestRow& row, const rt::Image& ours, const rt::Image& ref) {
     const char* env = std::getenv("RT_CONFORMANCE_OUT");
     if (!env || !*env) return;
+    const std::string dir = std::string(env) + "/" + rt::kPrecisionName;
     std::error_code ec;
-    fs::create_directories(env, ec);
+    fs::create_directories(dir, ec);
     const std::string stem = fs::path(row.image).stem().string();
     try {
-        rt::write_png(ours, std::string(env) + "/" + fs::path(row.image).filename().string());
+        rt::write_png(ours, dir + "/" + fs::path(row.image).filename().string());
         if (ours.width == ref.width && ours.height == ref.height)
-            rt::write_png(diff_image(ours, ref), std::string(env) + "/" + stem + "_diff.png");
+            rt::write_png(diff_image(ours, ref), dir + "/" + stem + "_diff.png");
     } catch (const std::exception& e) {
         ADD_FAILURE() << "RT_CONFORMANCE_OUT: " << e.what();
     }

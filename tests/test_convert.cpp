@@ -709,7 +709,7 @@ TEST(ConvertCli, NumberOverflowIsTheSameMessageInBothPrograms) {
     TempDir tmp;
     write_text(tmp / "huge.json", "{\"Scene\": {\n  \"ShadowRayEpsilon\": 1e999}}\n");
     const std::string expected = "huge.json: line 2, column 23: number overflow parsing '1e999' (not a finite number)";
-    const RunResult render = run_program(raytracer_path(), {"huge.json"}, tmp.path());
+    const RunResult render = run_raytracer({"huge.json"}, tmp.path());
     const RunResult convert = run_program(rtconvert_path(), {"huge.json", "out.xml"}, tmp.path());
     for (const RunResult* r : {&render, &convert}) {
         EXPECT_EQ(r->exit_code, 1);

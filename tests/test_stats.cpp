@@ -227,8 +227,8 @@ std::string run_on_terminal(const std::vector<std::string>& args, int* exit_code
     const char* slave_name = ::ptsname(master);
     if (!slave_name) return "no pty";
     const std::string slave_path = slave_name;
-    std::vector<std::string> storage = {raytracer_path()};
-    storage.insert(storage.end(), args.begin(), args.end());
+    std::vector<std::string> storage = raytracer_args(args);
+    storage.insert(storage.begin(), raytracer_path());
     std::vector<char*> argv;
     for (std::string& s : storage) argv.push_back(s.data());
     argv.push_back(nullptr);
@@ -273,7 +273,8 @@ TEST(Stats, ProgressLineOnATerminalClearedBeforeTheSummary) {
     EXPECT_NE(out.find("% "), std::string::npos) << out;
     EXPECT_NE(out.find("s elapsed"), std::string::npos) << out;
     // The summary is the last line, on a line of its own: cleared, then written.
-    const std::string summary = dir / "out.png: 1280x720, 9 triangles, 3 spheres";
+    const std::string summary =
+        dir / (std::string("out.png: 1280x720, ") + rt::kPrecisionName + ", 9 triangles, 3 spheres");
     const size_t at = out.rfind(summary);
     ASSERT_NE(at, std::string::npos) << out;
     EXPECT_EQ(out[at - 1], '\r');

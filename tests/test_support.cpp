@@ -78,8 +78,14 @@ std::string repo_file(const std::string& relative) {
     return relative;
 }
 
+std::vector<std::string> raytracer_args(const std::vector<std::string>& args) {
+    std::vector<std::string> all = {"--precision", rt::kPrecisionName};
+    all.insert(all.end(), args.begin(), args.end());
+    return all;
+}
+
 RunResult run_raytracer(const std::vector<std::string>& args, const std::string& cwd, unsigned timeout_seconds) {
-    return run_program(raytracer_path(), args, cwd, timeout_seconds);
+    return run_program(raytracer_path(), raytracer_args(args), cwd, timeout_seconds);
 }
 
 std::string rtconvert_path() { return g_start_dir + "/rtconvert"; }

@@ -35,7 +35,7 @@ struct RunResult {
 };
 
 // Runs the repo's ./raytracer (resolved to an absolute path from the directory the
-// test program started in) with `args`, in `cwd` when given, stdin from /dev/null,
+// test program started in) with `args` after raytracer_args' --precision, in `cwd` when given, stdin from /dev/null,
 // stdout and stderr captured. A run longer than `timeout_seconds` is killed
 // (SIGALRM, exit_code 142). If the binary cannot be executed, exit_code is 127.
 RunResult run_raytracer(const std::vector<std::string>& args, const std::string& cwd = "",
@@ -43,6 +43,10 @@ RunResult run_raytracer(const std::vector<std::string>& args, const std::string&
 
 // The absolute path run_raytracer executes.
 std::string raytracer_path();
+
+// `args` after "--precision" and this test program's precision (the library copy it
+// was compiled against: rt/real.h), so the CLI tests run the same precision as the rest.
+std::vector<std::string> raytracer_args(const std::vector<std::string>& args);
 
 // A file of this repository (e.g. "scenes/showcase.json") found from where the tests
 // run: the repo root (make test) or a build folder below it (make check-asan).

@@ -106,9 +106,9 @@ ImageRecord render_camera(const std::string& scene_path, const LoadedScene& s, s
     r.write = seconds_since(w0);
     if (!o.quiet)
         std::fprintf(stderr,
-                     "%s: %dx%d, %zu triangles, %zu spheres, load %.3fs, bvh %.3fs, render %.3fs, write %.3fs\n",
-                     out.c_str(), cam.width, cam.height, s.figures.triangles, s.figures.spheres, s.load_seconds,
-                     s.figures.seconds.bvh, r.render, r.write);
+                     "%s: %dx%d, %s, %zu triangles, %zu spheres, load %.3fs, bvh %.3fs, render %.3fs, write %.3fs\n",
+                     out.c_str(), cam.width, cam.height, kPrecisionName, s.figures.triangles, s.figures.spheres,
+                     s.load_seconds, s.figures.seconds.bvh, r.render, r.write);
     r.peak_rss = app::peak_rss_bytes();
     return r;
 }

@@ -75,7 +75,7 @@ std::string stats_json(const std::vector<ImageRecord>& images, const std::string
     using nlohmann::ordered_json;
     ordered_json doc;
     doc["raytracer"] = version;
-    doc["precision"] = sizeof(Real) == sizeof(float) ? "float" : "double";
+    doc["precision"] = kPrecisionName;
     doc["machine"] = {{"cpu", app::cpu_model()}, {"hardware_threads", std::thread::hardware_concurrency()}};
     ordered_json list = ordered_json::array();
     for (const ImageRecord& r : images) {

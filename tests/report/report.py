@@ -3,7 +3,7 @@
 scenes with back-face culling off and on, several runs each, and measures what each
 speed/accuracy switch costs. Standard library only.
 
-    python3 tests/report/report.py --bin-double B --bin-float B --imgdiff B [--gen-mesh B]
+    python3 tests/report/report.py --bin B --imgdiff B [--gen-mesh B]
                                    [--out report] [--runs 3] [--threads N] [--quick]
     make report / make report-quick          (extra arguments: REPORT_ARGS="...")
 
@@ -24,8 +24,8 @@ render (for our scenes, which have no reference), counted by build/report/imgdif
 
 Studies (each switch is a raytracer option, see README "Measurements"):
   culling      --no-cull against the default --cull, every scene (the blog table)
-  precision    the float build (make PRECISION=float) against double, every scene, and
-               simple.json / spheres.json moved 1e2, 1e3 and 1e4 away from the origin
+  precision    --precision float against double, every scene, alone and with --no-cull,
+               and simple.json / spheres.json moved 1e2, 1e3 and 1e4 away from the origin
   epsilon      --epsilon-scale 0.1 and 10: pixels newly darker (acne) and brighter (leaks)
   depth        --max-depth 0..8 on the scenes with mirrors, conductors or glass:
                time against the pixels that still change from depth d-1 to d
@@ -505,8 +505,7 @@ def machine(threads, bins):
 
 def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
-    ap.add_argument("--bin-double", required=True)
-    ap.add_argument("--bin-float", required=True)
+    ap.add_argument("--bin", required=True, help="the raytracer")
     ap.add_argument("--imgdiff", required=True)
     ap.add_argument("--gen-mesh", default="")
     ap.add_argument("--out", default=os.path.join(REPO, "report"))
@@ -520,7 +519,7 @@ def main():
     runs = a.runs or (1 if a.quick else 3)
     t_start = time.perf_counter()
 
-    for b in (a.bin_double, a.bin_float, a.imgdiff):
+    for b in (a.bin, a.imgdiff):
         if not os.access(b, os.X_OK):
             sys.exit(f"report.py: {b} is not an executable")
     os.makedirs(a.work, exist_ok=True)
@@ -534,20 +533,21 @@ def main():
     main_set = official + ours
 
     configs = {
-        "double": (a.bin_double, []),
-        "nocull": (a.bin_double, ["--no-cull"]),
-        "float": (a.bin_float, []),
-        "eps0.1": (a.bin_double, ["--epsilon-scale", "0.1"]),
-        "eps10": (a.bin_double, ["--epsilon-scale", "10"]),
+        "double": [],
+        "nocull": ["--no-cull"],
+        "float": ["--precision", "float"],
+        "float_nocull": ["--precision", "float", "--no-cull"],
+        "eps0.1": ["--epsilon-scale", "0.1"],
+        "eps10": ["--epsilon-scale", "10"],
         # Each study times its own default runs, interleaved with its variants, so that a
         # change in the machine's load between studies cannot pass for an effect.
-        "double_prec": (a.bin_double, []),
-        "eps1": (a.bin_double, []),
-        "depth_default": (a.bin_double, []),
+        "double_prec": [],
+        "eps1": [],
+        "depth_default": [],
     }
     depths = list(range(0, 9))
     for d in depths:
-        configs[f"depth{d}"] = (a.bin_double, ["--max-depth", str(d)])
+        configs[f"depth{d}"] = ["--max-depth", str(d)]
     bvh_variants = [("leaf 1", ["--bvh-leaf", "1"]), ("leaf 2", ["--bvh-leaf", "2"]), ("leaf 4", ["--bvh-leaf", "4"]),
                     ("leaf 8, 16 bins, SAH (default)", None), ("leaf 16", ["--bvh-leaf", "16"]),
                     ("leaf 32", ["--bvh-leaf", "32"]), ("8 bins", ["--bvh-bins", "8"]),
@@ -558,17 +558,15 @@ def main():
     bvh_configs = []
     for name, opts in bvh_variants:
         cfg = "bvh_default" if opts is None else "bvh_" + "_".join(opts).replace("--", "")
-        configs[cfg] = (a.bin_double, opts or [])
+        configs[cfg] = opts or []
         bvh_configs.append((name, cfg))
 
-    # Copies of the binaries: a rebuild during the run changes nothing.
+    # A copy of the binary: a rebuild during the run changes nothing.
     bins_dir = os.path.join(a.work, "run-bin")
     os.makedirs(bins_dir, exist_ok=True)
-    copies = {}
-    for src, name in ((a.bin_double, "raytracer-double"), (a.bin_float, "raytracer-float")):
-        copies[src] = os.path.join(bins_dir, name)
-        shutil.copy2(src, copies[src])
-    configs = {name: (copies[b], o) for name, (b, o) in configs.items()}
+    copy = os.path.join(bins_dir, "raytracer")
+    shutil.copy2(a.bin, copy)
+    configs = {name: (copy, o) for name, o in configs.items()}
 
     R = Runner(configs, a.threads, a.work, a.timeout)
     D = Differ(a.imgdiff)
@@ -577,7 +575,7 @@ def main():
     # --- 1. culling off/on -------------------------------------------------------------
     R.measure(["nocull", "double"], main_set, runs, "culling")
     # --- 2. precision --------------------------------------------------------------------
-    R.measure(["double_prec", "float"], main_set, runs, "precision")
+    R.measure(["double_prec", "float", "float_nocull"], main_set, runs, "precision")
     R.measure(["double", "float"], far, 1, "far from the origin")
     # --- 3. epsilon ------------------------------------------------------------------------
     R.measure(["eps0.1", "eps1", "eps10"], main_set, runs, "epsilon")
@@ -731,7 +729,8 @@ def main():
                         f"{pct_s(om)} / {pct_s(ow)}" if no else "—"])
 
     add_row("precision", "double (default)", "double_prec", main_set, "double_prec")
-    add_row("precision", "float (`make PRECISION=float`)", "float", main_set, "double_prec")
+    add_row("precision", "float (`--precision float`)", "float", main_set, "double_prec")
+    add_row("precision", "float, culling off (`--precision float --no-cull`)", "float_nocull", main_set, "double_prec")
     add_row("culling", "on (default)", "double", main_set)
     add_row("culling", "off (`--no-cull`)", "nocull", main_set)
     add_row("ShadowRayEpsilon", "x0.1 (`--epsilon-scale 0.1`)", "eps0.1", main_set, "eps1")
