@@ -12,7 +12,8 @@ missing or older than it.
 
 Every scene is measured twice, with culling on (--cull) and off (--no-cull), the same
 setting on both sides (refrender culls through an Embree filter function, so the no-cull
-ratio is the fairer per-ray figure); --cull-modes restricts this.
+ratio is the fairer per-ray figure); --cull-modes restricts this. Ours renders in double
+unless --precision float (BENCH_ARGS="--precision float").
 
 Method, per scene: one warm-up run of each program, then N timed runs of each (default 5,
 --quick 3), alternating (ours, ref, ref, ours, ours, ref, ...), each a whole process with the
@@ -55,7 +56,8 @@ DEFAULT_SHAPE_SIZES = ["1M"]
 CULL_MODES = ["cull", "no-cull"]  # the flag passed to both programs
 
 OURS_LINE = re.compile(
-    r"^(?P<image>.*): (?P<w>\d+)x(?P<h>\d+), (?P<tris>\d+) triangles, (?P<spheres>\d+) spheres, "
+    r"^(?P<image>.*): (?P<w>\d+)x(?P<h>\d+), (?P<precision>double|float), (?P<tris>\d+) triangles, "
+    r"(?P<spheres>\d+) spheres, "
     r"load (?P<load>[\d.eE+-]+)s, bvh (?P<bvh>[\d.eE+-]+)s, render (?P<render>[\d.eE+-]+)s, "
     r"write (?P<write>[\d.eE+-]+)s\s*$")
 REF_LINE = re.compile(
@@ -414,8 +416,9 @@ def bench_scene(scene, cull, a, ours_bin, ref_bin, warmed, ours_shown):
     """One scene under one culling setting (cull: "cull" or "no-cull", the flag for both)."""
     name = scene["name"] + ("" if cull == "cull" else " (no-cull)")  # in messages and notes
     flag = "--" + cull
-    ours_cmd = [ours_bin, "-q", "-j", str(a.threads), flag, "-o", "{outdir}", scene["path"]]
-    ours_loud_cmd = [ours_bin, "-j", str(a.threads), flag, "-o", "{outdir}", scene["path"]]
+    prec = ["--precision", a.precision]
+    ours_cmd = [ours_bin, "-q", "-j", str(a.threads)] + prec + [flag, "-o", "{outdir}", scene["path"]]
+    ours_loud_cmd = [ours_bin, "-j", str(a.threads)] + prec + [flag, "-o", "{outdir}", scene["path"]]
     ref_cmd = ([ref_bin, "--threads", str(a.threads), flag, "--outdir", "{outdir}", scene["path"]]
                if ref_bin else None)
     res = {"name": scene["name"], "cull": cull, "kind": scene["kind"], "path": scene["path"],
@@ -567,7 +570,8 @@ def report(results, meta):
                f"alternating (heavy scenes, marked *: at most {meta['heavy_runs']})")
     out.append("- culling: every scene with " + " and with ".join(f"`--{c}`" for c in modes)
                + " on both sides (rows marked no-cull are the latter)")
-    out.append(f"- ours: {meta['raytracer']} (git {meta['git']}, sha256 {meta['raytracer_sha256'][:12]})")
+    out.append(f"- ours: {meta['raytracer']} --precision {meta['precision']} (git {meta['git']}, "
+               f"sha256 {meta['raytracer_sha256'][:12]})")
     if meta["refrender_problem"]:
         out.append(f"- **refrender could not run: {meta['refrender_problem']}; our times only**")
     else:
@@ -714,6 +718,8 @@ def main():
     ap.add_argument("--cull-modes", default=",".join(CULL_MODES),
                     help="culling settings to measure every scene with, both programs (default cull,no-cull)")
     ap.add_argument("--raytracer", default=os.path.join(REPO, "raytracer"))
+    ap.add_argument("--precision", choices=("double", "float"), default="double",
+                    help="our precision (--precision of ./raytracer; default double)")
     ap.add_argument("--refrender", default=None, help="default: $RT_SHARED_DIR/tools/refrender or ../shared/tools/refrender")
     ap.add_argument("--gen-mesh", default=os.path.join(REPO, "build", "bench", "gen_mesh"))
     ap.add_argument("--out", default=os.path.join(REPO, "build", "bench"), help="where bench.md, bench.json and scenes/ go")
@@ -789,6 +795,7 @@ def main():
         "raytracer": ("./" + os.path.relpath(os.path.abspath(a.raytracer), REPO)
                       if os.path.abspath(a.raytracer).startswith(REPO + os.sep) else a.raytracer),
         "raytracer_sha256": sha256(ours_bin),
+        "precision": a.precision,
         "git": git_state(),
         "refrender": ref,
         "refrender_problem": problem,
