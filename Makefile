@@ -25,6 +25,11 @@ ifneq ($(wildcard third_party/stb/stb_image_write.h),)
   override CPPFLAGS += -Ithird_party
 endif
 
+# PRECISION=float once built a second, single-precision program; ./raytracer now has both.
+ifdef PRECISION
+  $(warning PRECISION=$(PRECISION) is ignored: one ./raytracer renders both precisions, see --precision)
+endif
+
 # Objects live in build/<target>: build/native by default, build/x86-64 for MARCH=x86-64.
 BUILD := build/$(MARCH)
 

@@ -266,6 +266,9 @@ TEST(Trace, LightsAreReportedLitOrShadowedByTheirOccluder) {
     // Only the first light counts: the pixel is 100/16 = 6.25, truncated to 6.
     EXPECT_EQ(doc["pixel"], json({6, 6, 6}));
     EXPECT_TRUE(contains(r.out, "shadowed by Sphere 8 at t = ")) << dump(r);
+    // Both name the precision that traced (run_raytracer passes the suite's own).
+    EXPECT_EQ(doc["precision"], rt::kPrecisionName);
+    EXPECT_TRUE(contains(r.out, std::string(", ") + rt::kPrecisionName + "), MaxRecursionDepth ")) << dump(r);
 }
 
 TEST(Trace, ABackFaceTheCameraRayPassesOverIsReported) {

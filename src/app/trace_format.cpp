@@ -249,7 +249,7 @@ std::string trace_text(const Scene& scene, const PixelTrace& t) {
     TextWriter w(scene);
     w.line(0, "pixel x " + std::to_string(t.x) + ", y " + std::to_string(t.y) + " of camera " +
                   std::to_string(t.camera + 1) + " (" + cam.image_name + ", " + std::to_string(cam.width) + "x" +
-                  std::to_string(cam.height) + "), MaxRecursionDepth " +
+                  std::to_string(cam.height) + ", " + kPrecisionName + "), MaxRecursionDepth " +
                   std::to_string(scene.setup.max_recursion_depth) + ", ShadowRayEpsilon " +
                   num(scene.setup.shadow_ray_epsilon));
     w.ray(t.root, 0, false);
@@ -271,6 +271,7 @@ std::string trace_json(const Scene& scene, const PixelTrace& t) {
                .field("max_recursion_depth", std::to_string(scene.setup.max_recursion_depth))
                .field("shadow_ray_epsilon", jnum(scene.setup.shadow_ray_epsilon))
                .field("rounding", jstr(rounding_name(t.rounding)))
+               .field("precision", jstr(kPrecisionName))
                .field("pixel", "[" + pixel_text(t.pixel) + "]")
                .field("radiance", jvec(t.root.radiance))
                .field("clamped", jvec(t.clamped))
