@@ -145,6 +145,7 @@ struct Bvh {
     NodeArray nodes;              // nodes[0] is the root (absent when there are no primitives)
     std::vector<uint32_t> prims;  // primitive ids in leaf order
     int depth = 0;                // of the 4-wide tree, root = 1
+    float extent = 0;             // largest magnitude of the root's bounds (0 when empty)
 
     // Builds over `boxes[i]` (one box per primitive id i, n of them), sorting them
     // in place: their contents are unspecified afterwards, their storage the

@@ -37,21 +37,15 @@ constexpr Real kTieSlack = 1 + 64 * std::numeric_limits<Real>::epsilon();
 // within gamma(16) R of the ray point at its t and of the primitive, so padding by
 // twice gamma(32) R (twice: so that its computed t, not only some t, is inside the
 // padded slabs; 32 not 16: margin for needles, whose edge lines the rounding
-// turns the most) covers it. `root` is the BVH's root node.
-// `extent`, when given, receives R's scene part (float only).
-inline double box_pad(const Bvh4Node& root, const Ray& r, double* extent_out = nullptr) {
+// turns the most) covers it. `extent`, when given, receives R's scene part (float only).
+inline double box_pad(const Bvh& bvh, const Ray& r, double* extent_out = nullptr) {
     if constexpr (std::is_same_v<Real, double>) {
-        (void)root;
+        (void)bvh;
         (void)r;
         (void)extent_out;
         return 0;
     } else {
-        float extent = 0;
-        for (int i = 0; i < 4; ++i) {
-            if (root.child[i] == Bvh4Node::kEmpty) continue;
-            for (int a = 0; a < 3; ++a)
-                extent = std::max(extent, std::max(std::fabs(root.lo[a][i]), std::fabs(root.hi[a][i])));
-        }
+        const float extent = bvh.extent;
         const double org = std::max(std::fabs(r.org.x), std::max(std::fabs(r.org.y), std::fabs(r.org.z)));
         if (extent_out) *extent_out = extent;
         return 2 * double(gamma_bound<float>(32)) * (double(extent) + org);
@@ -131,7 +125,7 @@ inline int test4(const Bvh4Node& n, const BoxRay& r, double tmin, double tmax, d
 #endif
 }
 
-inline BoxRay box_ray(const RayPre& p, const Bvh4Node& root, Real) { return box_ray(p, box_pad(root, p.ray)); }
+inline BoxRay box_ray(const RayPre& p, const Bvh& bvh, Real) { return box_ray(p, box_pad(bvh, p.ray)); }
 #else
 // Float rays test boxes in float, conservatively: the float slab interval
 // contains the exact one of the padded box, so no box the exact ray enters once
@@ -159,20 +153,20 @@ struct BoxRay {
 // The box ray for rays with tmin >= 0 whose padded origin and scene bounds stay
 // within kBoxDomain; any other ray gets NaN inverses, which the max and min of
 // test4 skip: it enters every box (and empty slots, leaves of no primitives).
-inline BoxRay box_ray(const RayPre& p, const Bvh4Node& root, Real tmin) {
+inline BoxRay box_ray(const RayPre& p, const Bvh& bvh, Real tmin) {
     BoxRay b;
     double extent = 0;
     // Grown by 1/32 so that the origin's rounding to nearest below (at most u of
     // |org| + pad, under 1/64 of pad) still leaves a pad of at least box_pad.
-    const float pad = float(box_pad(root, p.ray, &extent) * (1 + 1.0 / 32));
+    const float pad = float(box_pad(bvh, p.ray, &extent) * (1 + 1.0 / 32));
     bool in_domain = tmin >= 0 && extent < kBoxDomain;
     for (int a = 0; a < 3; ++a) {
         const float d = p.ray.dir[a], o = p.ray.org[a];
         b.near_is_hi[a] = std::signbit(d) ? 1 : 0;
         // 1/d within a factor 1 + u; a finite d whose inverse overflows gets FLT_MAX
         // as its lower bound, an infinite one 0 for both.
-        const float inv = 1 / d;
-        b.inv_near[a] = d == 0 ? inv : std::copysign(std::fmin(std::fabs(inv) * (1 - kInvWiden), FLT_MAX), d);
+        const float inv = 1 / d, shrunk = std::fabs(inv) * (1 - kInvWiden);
+        b.inv_near[a] = d == 0 ? inv : std::copysign(shrunk < FLT_MAX ? shrunk : FLT_MAX, d);
         b.inv_far[a] = inv * (1 + kInvWiden);
         // No padding keeps the origin's bits, -0 included.
         const float out = b.near_is_hi[a] ? -pad : pad;
@@ -507,7 +501,7 @@ bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
     auto box_limit = [&]() { return found ? BoxReal(best_t * kTieSlack) : BoxReal(tmax); };
 
     if (!s.accel.bvh.nodes.empty()) {
-        const BoxRay br = box_ray(p, s.accel.bvh.nodes[0], tmin);
+        const BoxRay br = box_ray(p, s.accel.bvh, tmin);
         StackEntry stack[kStackSize];
         int sp = 0;
         // The nearest hit child is visited next without a trip through the stack;
@@ -590,7 +584,7 @@ bool any_hit(const Scene& s, const Ray& ray, Real tmin, Real tmax, uint32_t* occ
         Real t;
         if (hit_prim<false, true>(s, p, *occluder, tmin, tmax, t, w)) return true;
     }
-    const BoxRay br = box_ray(p, s.accel.bvh.nodes[0], tmin);
+    const BoxRay br = box_ray(p, s.accel.bvh, tmin);
     int32_t stack[kStackSize];
     uint16_t counts[kStackSize];
     int sp = 0;
