@@ -1,15 +1,16 @@
 // A 4-wide BVH in one flat array of 128-byte nodes, built directly by binned
 // SAH (bvh_build.cpp): one SIMD box test serves four children. Bounds are stored as float,
 // rounded outwards, so every box contains its primitives exactly even when
-// Real is double; the box test itself runs in double (traverse.cpp). Leaves hold
-// up to 8 primitives, tested four at a time with AVX2, and the SAH prices them
-// that way (BvhBuildOptions::block).
+// Real is double; the box test itself runs in Real (traverse.cpp). Leaves hold
+// up to 8 primitives, tested kLeafBlock at a time with AVX2 (four doubles or eight
+// floats), and the SAH prices them that way (BvhBuildOptions::block).
 #pragma once
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <type_traits>
 #include <vector>
 
 #include "rt/math.h"
@@ -117,10 +118,10 @@ private:
     size_t size_ = 0;
 };
 
-// Primitives a leaf tests at once (traverse.cpp): four triangles per AVX2 test
-// in double precision, otherwise one.
-#if defined(__AVX2__) && !defined(RT_REAL_FLOAT)
-inline constexpr uint32_t kLeafBlock = 4;
+// Primitives a leaf tests at once (traverse.cpp): one AVX2 register of Real
+// lanes, four triangles in double and eight in float; one without AVX2.
+#if defined(__AVX2__)
+inline constexpr uint32_t kLeafBlock = std::is_same_v<Real, float> ? 8 : 4;
 #else
 inline constexpr uint32_t kLeafBlock = 1;
 #endif
@@ -135,7 +136,8 @@ struct BvhBuildOptions {
     bool sah = true;              // false: object-median splits only (fastest build, slower rays)
     // Leaf-order vertices (scene.h, LeafVertices) in double for scenes of up to
     // this many primitives (72 bytes a triangle, at most 9 MiB: a copy that stays
-    // in cache), in float above (docs/speed.md); 0: never double.
+    // in cache), in float above (docs/speed.md); 0: never double. Double builds
+    // only: with Real = float the copy is always in float.
     size_t double_copy_max = size_t(1) << 17;
 };
 
@@ -143,6 +145,7 @@ struct Bvh {
     NodeArray nodes;              // nodes[0] is the root (absent when there are no primitives)
     std::vector<uint32_t> prims;  // primitive ids in leaf order
     int depth = 0;                // of the 4-wide tree, root = 1
+    float extent = 0;             // largest magnitude of the root's bounds (0 when empty)
 
     // Builds over `boxes[i]` (one box per primitive id i, n of them), sorting them
     // in place: their contents are unspecified afterwards, their storage the

@@ -233,8 +233,9 @@ struct Geometry {
 // memory instead of a chain of loads (prims, triangles, positions). Within a leaf
 // of n triangles the coordinates are grouped (at(), below), so that four
 // triangles' x of vertex a, say, are one plain load, not a gather. build_scene
-// makes them when leaves test four triangles at once (kLeafBlock), in one of two
-// precisions, and only where they change no number the tests see:
+// makes them when leaves test several triangles at once (kLeafBlock), in one of two
+// precisions, and only where they change no number the tests see (with Real =
+// float: always in float, serving every leaf of triangles):
 //  - doubles, for scenes of at most BvhBuildOptions::double_copy_max primitives
 //    (the official scenes, whose JSON coordinates are seldom floats): every leaf
 //    of triangles;
@@ -246,9 +247,9 @@ struct Geometry {
 // Bvh4Node::kIndexedLeaf and reads its primitives through their ids.
 class LeafVertices {
 public:
-    // Coordinates for n triangles: loads of four from the last leaf's last
-    // triangle read up to three past its end.
-    static constexpr size_t coordinates_for(size_t n) { return 9 * n + 3; }
+    // Coordinates for n triangles: loads of kLeafBlock lanes from the last leaf's
+    // last triangle read up to kLeafBlock - 1 past its end.
+    static constexpr size_t coordinates_for(size_t n) { return 9 * n + kLeafBlock - 1; }
     // Index of coordinate `axis` of vertex `k` of the triangle at leaf position
     // first + j, in the leaf at prims[first, first + n).
     static size_t at(uint32_t first, uint32_t n, uint32_t j, int k, int axis) {

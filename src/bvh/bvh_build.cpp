@@ -568,6 +568,7 @@ void Bvh::build(BuildBox* boxes, size_t count, const BvhBuildOptions& options) {
     nodes.clear();
     prims.clear();
     depth = 0;
+    extent = 0;
     if (count == 0) return;
     const uint32_t n = static_cast<uint32_t>(count);
     for (uint32_t i = 0; i < n; ++i) boxes[i].id = i;
@@ -599,6 +600,11 @@ void Bvh::build(BuildBox* boxes, size_t count, const BvhBuildOptions& options) {
     }
     nodes.set_size(next.load());
     depth = max_depth.load();
+    for (int i = 0; i < 4; ++i) {
+        if (nodes[0].child[i] == Bvh4Node::kEmpty) continue;
+        for (int a = 0; a < 3; ++a)
+            extent = std::max(extent, std::max(std::fabs(nodes[0].lo[a][i]), std::fabs(nodes[0].hi[a][i])));
+    }
 
     prims.resize(n);
     for (uint32_t i = 0; i < n; ++i) prims[i] = boxes[i].id;

@@ -1,11 +1,14 @@
 // BVH traversal: closest hit (near child first, fixed stack) and any hit.
-// Four child boxes are tested at once, in double precision (AVX when the
-// compiler targets it, scalar otherwise), against float bounds rounded outwards.
+// Four child boxes are tested at once against float bounds rounded outwards: in
+// double for double rays (AVX when the compiler targets it, scalar otherwise), in
+// float, conservatively widened, for float rays (SSE, or scalar).
 #include <algorithm>
+#include <cfloat>
+#include <cmath>
 #include <limits>
 #include <type_traits>
 
-#if defined(__AVX__)
+#if defined(__SSE2__)
 #include <immintrin.h>
 #endif
 
@@ -17,23 +20,6 @@ namespace {
 
 constexpr int kStackSize = 256;  // 3 entries per level at most; the builder bounds depth to ~80
 constexpr Real kTieSlack = 1 + 64 * std::numeric_limits<Real>::epsilon();
-
-// Widening of the exit distance that makes the slab test conservative despite
-// rounding in (bound - org) * inv_dir (pbrt-v3 section 3.9.2: 1 + 2 gamma(3)).
-// Flat boxes (axis-aligned walls) make the slabs meet at one t, so without the
-// widening a ray along a wall's edge could miss both walls.
-constexpr double kSlabWiden = 1 + 2 * gamma_bound<double>(3);
-
-// Per-ray data of the box test. For each axis the near plane is lo when the
-// direction is positive, so the entry is (near - org) * inv and the exit
-// (far - org) * inv; a 0 * inf = NaN (ray in a slab's boundary plane, parallel
-// to it) then falls out of the max/min below and leaves the interval open.
-// The near and far planes are measured from org_near and org_far: the origin, or
-// for float the origin moved so that every box is padded by box_pad (below).
-struct BoxRay {
-    double org_near[3], org_far[3], inv[3];
-    int near_is_hi[3];
-};
 
 // How far every box is padded for this ray, so that the box test is conservative
 // for the triangle and sphere tests as computed, not only for exact geometry: a
@@ -51,23 +37,41 @@ struct BoxRay {
 // within gamma(16) R of the ray point at its t and of the primitive, so padding by
 // twice gamma(32) R (twice: so that its computed t, not only some t, is inside the
 // padded slabs; 32 not 16: margin for needles, whose edge lines the rounding
-// turns the most) covers it. `root` is the BVH's root node.
-inline double box_pad(const Bvh4Node& root, const Ray& r) {
+// turns the most) covers it. `extent`, when given, receives R's scene part (float only).
+inline double box_pad(const Bvh& bvh, const Ray& r, double* extent_out = nullptr) {
     if constexpr (std::is_same_v<Real, double>) {
-        (void)root;
+        (void)bvh;
         (void)r;
+        (void)extent_out;
         return 0;
     } else {
-        float extent = 0;
-        for (int i = 0; i < 4; ++i) {
-            if (root.child[i] == Bvh4Node::kEmpty) continue;
-            for (int a = 0; a < 3; ++a)
-                extent = std::max(extent, std::max(std::fabs(root.lo[a][i]), std::fabs(root.hi[a][i])));
-        }
+        const float extent = bvh.extent;
         const double org = std::max(std::fabs(r.org.x), std::max(std::fabs(r.org.y), std::fabs(r.org.z)));
+        if (extent_out) *extent_out = extent;
         return 2 * double(gamma_bound<float>(32)) * (double(extent) + org);
     }
 }
+
+#if !defined(RT_REAL_FLOAT)
+// Double rays test boxes in double: the float bounds convert exactly.
+using BoxReal = double;
+
+// Widening of the exit distance that makes the slab test conservative despite
+// rounding in (bound - org) * inv_dir (pbrt-v3 section 3.9.2: 1 + 2 gamma(3)).
+// Flat boxes (axis-aligned walls) make the slabs meet at one t, so without the
+// widening a ray along a wall's edge could miss both walls.
+constexpr double kSlabWiden = 1 + 2 * gamma_bound<double>(3);
+
+// Per-ray data of the box test. For each axis the near plane is lo when the
+// direction is positive, so the entry is (near - org) * inv and the exit
+// (far - org) * inv; a 0 * inf = NaN (ray in a slab's boundary plane, parallel
+// to it) then falls out of the max/min below and leaves the interval open.
+// The near and far planes are measured from org_near and org_far: the origin moved
+// so that every box is padded by box_pad (0 for double rays: the origin itself).
+struct BoxRay {
+    double org_near[3], org_far[3], inv[3];
+    int near_is_hi[3];
+};
 
 inline BoxRay box_ray(const RayPre& p, double pad) {
     BoxRay b;
@@ -121,36 +125,178 @@ inline int test4(const Bvh4Node& n, const BoxRay& r, double tmin, double tmax, d
 #endif
 }
 
+inline BoxRay box_ray(const RayPre& p, const Bvh& bvh, Real) { return box_ray(p, box_pad(bvh, p.ray)); }
+#else
+// Float rays test boxes in float, conservatively: the float slab interval
+// contains the exact one of the padded box, so no box the exact ray enters once
+// padded by box_pad is rejected (docs/precision.md, "Float box tests"; the proof is
+// that of docs/float-box-tests.md, with the padded origins as the ray's origins).
+using BoxReal = float;
+
+// Relative widening of 1/dir, towards zero for the near planes and away from it for
+// the far planes: it covers the rounding of 1/dir, of the widening product itself, and
+// of the slab's subtraction and product (1 + 2^-24 each; docs/precision.md).
+constexpr float kInvWiden = 0x1p-21f;
+// Above this magnitude a bound or origin could make a float subtraction overflow:
+// such rays enter every box (see box_ray).
+constexpr float kBoxDomain = 0x1p125f;
+
+// Per-ray data of the float box test: for each axis the entry into the slab is
+// (near - org_near) * inv_near and the exit (far - org_far) * inv_far, the near
+// plane being lo when the direction's sign bit is clear. org_near is the origin
+// moved by box_pad against the direction, org_far moved with it.
+struct BoxRay {
+    float org_near[3], org_far[3], inv_near[3], inv_far[3];
+    int near_is_hi[3];
+};
+
+// The box ray for rays with tmin >= 0 whose padded origin and scene bounds stay
+// within kBoxDomain; any other ray gets NaN inverses, which the max and min of
+// test4 skip: it enters every box (and empty slots, leaves of no primitives).
+inline BoxRay box_ray(const RayPre& p, const Bvh& bvh, Real tmin) {
+    BoxRay b;
+    double extent = 0;
+    // Grown by 1/32 so that the origin's rounding to nearest below (at most u of
+    // |org| + pad, under 1/64 of pad) still leaves a pad of at least box_pad.
+    const float pad = float(box_pad(bvh, p.ray, &extent) * (1 + 1.0 / 32));
+    bool in_domain = tmin >= 0 && extent < kBoxDomain;
+    for (int a = 0; a < 3; ++a) {
+        const float d = p.ray.dir[a], o = p.ray.org[a];
+        b.near_is_hi[a] = std::signbit(d) ? 1 : 0;
+        // 1/d within a factor 1 + u; a finite d whose inverse overflows gets FLT_MAX
+        // as its lower bound, an infinite one 0 for both.
+        const float inv = 1 / d, shrunk = std::fabs(inv) * (1 - kInvWiden);
+        b.inv_near[a] = d == 0 ? inv : std::copysign(shrunk < FLT_MAX ? shrunk : FLT_MAX, d);
+        b.inv_far[a] = inv * (1 + kInvWiden);
+        // No padding keeps the origin's bits, -0 included.
+        const float out = b.near_is_hi[a] ? -pad : pad;
+        b.org_near[a] = pad == 0 ? o : o + out;
+        b.org_far[a] = pad == 0 ? o : o - out;
+        in_domain = in_domain && std::fabs(b.org_near[a]) < kBoxDomain && std::fabs(b.org_far[a]) < kBoxDomain;
+    }
+    if (!in_domain)
+        for (int a = 0; a < 3; ++a) b.inv_near[a] = b.inv_far[a] = std::numeric_limits<float>::quiet_NaN();
+    return b;
+}
+
+// Entry distances of the four children into `t` (meaningful for hits only), and a hit mask.
+inline int test4(const Bvh4Node& n, const BoxRay& r, float tmin, float tmax, float t[4]) {
+#if defined(__SSE2__)
+    __m128 tnear = _mm_set1_ps(tmin), tfar = _mm_set1_ps(tmax);
+    for (int a = 0; a < 3; ++a) {
+        const float* nearp = r.near_is_hi[a] ? n.hi[a] : n.lo[a];
+        const float* farp = r.near_is_hi[a] ? n.lo[a] : n.hi[a];
+        const __m128 t0 =
+            _mm_mul_ps(_mm_sub_ps(_mm_load_ps(nearp), _mm_set1_ps(r.org_near[a])), _mm_set1_ps(r.inv_near[a]));
+        const __m128 t1 =
+            _mm_mul_ps(_mm_sub_ps(_mm_load_ps(farp), _mm_set1_ps(r.org_far[a])), _mm_set1_ps(r.inv_far[a]));
+        // max/min return their second operand when the first is NaN.
+        tnear = _mm_max_ps(t0, tnear);
+        tfar = _mm_min_ps(t1, tfar);
+    }
+    _mm_storeu_ps(t, tnear);
+    return _mm_movemask_ps(_mm_cmple_ps(tnear, tfar));
+#else
+    int mask = 0;
+    for (int i = 0; i < 4; ++i) {
+        float tn = tmin, tf = tmax;
+        for (int a = 0; a < 3; ++a) {
+            const float nearv = r.near_is_hi[a] ? n.hi[a][i] : n.lo[a][i];
+            const float farv = r.near_is_hi[a] ? n.lo[a][i] : n.hi[a][i];
+            const float t0 = (nearv - r.org_near[a]) * r.inv_near[a];
+            const float t1 = (farv - r.org_far[a]) * r.inv_far[a];
+            tn = t0 > tn ? t0 : tn;
+            tf = t1 < tf ? t1 : tf;
+        }
+        t[i] = tn;
+        mask |= tn <= tf ? 1 << i : 0;
+    }
+    return mask;
+#endif
+}
+#endif
+
 // Tests one BVH primitive; returns true with t (and weights) on a hit in (tmin, tmax).
 template <bool kCull, bool kShadow = false>
 inline bool hit_prim(const Scene& s, const RayPre& p, uint32_t id, Real tmin, Real tmax, Real& t, Real w[3]) {
     return s.geometry.intersect<kCull, kShadow>(p, s.geometry.shape_of<true>(id), tmin, tmax, t, w);
 }
 
-#if defined(__AVX2__) && !defined(RT_REAL_FLOAT)
-// Leaves test their triangles four at a time: the edge stage of the watertight
-// test (triangle_edges) for four triangles with AVX2, the same operations lane by
-// lane, so the same bits as one at a time. The loads of all four triangles and
-// their twelve vertices are issued together instead of each waiting behind the
-// previous triangle's branches; the rest of the test (triangle_hit) runs only for
-// the lanes whose edges the ray passes, in leaf order.
+#if defined(__AVX2__)
+// Leaves test their triangles kLeafBlock at a time, one AVX2 register of Real
+// lanes (four doubles or eight floats): the edge stage of the watertight test
+// (triangle_edges) with the same operations lane by lane, so the same bits as one
+// at a time. The loads of all the block's triangles and vertices are issued
+// together instead of each waiting behind the previous triangle's branches; the
+// rest of the test (triangle_hit) runs only for the lanes whose edges the ray
+// passes, in leaf order.
 
-struct Edges4 {
-    alignas(32) double ax[4], ay[4], az[4], bx[4], by[4], bz[4], cx[4], cy[4], cz[4], u[4], v[4], w[4];
+// The operations of the edge stage on one register of T lanes.
+template <class T>
+struct Lanes;
+
+template <>
+struct Lanes<double> {
+    using V = __m256d;
+    static constexpr int kWidth = 4;
+    static V set1(double x) { return _mm256_set1_pd(x); }
+    static V load(const double* p) { return _mm256_loadu_pd(p); }
+    static V load(const float* p) { return _mm256_cvtps_pd(_mm_loadu_ps(p)); }
+    static void store(double* p, V x) { _mm256_store_pd(p, x); }
+    static V sub(V a, V b) { return _mm256_sub_pd(a, b); }
+    static V mul(V a, V b) { return _mm256_mul_pd(a, b); }
+    // Lanes where any of a, b, c is < 0 (kLess) or > 0.
+    template <bool kLess>
+    static int any_sign(V a, V b, V c) {
+        constexpr int kCmp = kLess ? _CMP_LT_OQ : _CMP_GT_OQ;
+        const V z = _mm256_setzero_pd();
+        return _mm256_movemask_pd(_mm256_or_pd(_mm256_or_pd(_mm256_cmp_pd(a, z, kCmp), _mm256_cmp_pd(b, z, kCmp)),
+                                               _mm256_cmp_pd(c, z, kCmp)));
+    }
+};
+
+template <>
+struct Lanes<float> {
+    using V = __m256;
+    static constexpr int kWidth = 8;
+    static V set1(float x) { return _mm256_set1_ps(x); }
+    static V load(const float* p) { return _mm256_loadu_ps(p); }
+    static void store(float* p, V x) { _mm256_store_ps(p, x); }
+    static V sub(V a, V b) { return _mm256_sub_ps(a, b); }
+    static V mul(V a, V b) { return _mm256_mul_ps(a, b); }
+    template <bool kLess>
+    static int any_sign(V a, V b, V c) {
+        constexpr int kCmp = kLess ? _CMP_LT_OQ : _CMP_GT_OQ;
+        const V z = _mm256_setzero_ps();
+        return _mm256_movemask_ps(_mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(a, z, kCmp), _mm256_cmp_ps(b, z, kCmp)),
+                                               _mm256_cmp_ps(c, z, kCmp)));
+    }
+};
+
+using L = Lanes<Real>;
+constexpr int kLanes = L::kWidth;
+static_assert(kLanes == int(kLeafBlock), "a leaf block is one register");
+
+struct EdgesN {
+    alignas(32) Real ax[kLanes], ay[kLanes], az[kLanes], bx[kLanes], by[kLanes], bz[kLanes], cx[kLanes], cy[kLanes],
+        cz[kLanes], u[kLanes], v[kLanes], w[kLanes];
     TriEdges lane(int j) const {
         return {ax[j], ay[j], az[j], bx[j], by[j], bz[j], cx[j], cy[j], cz[j], u[j], v[j], w[j]};
     }
 };
 
-// The vertices of four triangles, relative to the ray origin, for the edge stage:
-// v[k][0..2] = components kx, ky, kz of vertex k of each lane.
-struct Vertices4 {
-    __m256d v[3][3];
+// The vertices of a block of triangles, relative to the ray origin, for the edge
+// stage: v[k][0..2] = components kx, ky, kz of vertex k of each lane.
+struct VerticesN {
+    L::V v[3][3];
 };
 
-// Vertices of triangles ids[0 .. n) (1 <= n <= 4; lanes past n repeat lane n - 1)
-// through their indices into Geometry::positions.
-inline Vertices4 indexed_vertices4(const Scene& s, const RayPre& p, const uint32_t ids[4], int n) {
+// Vertices of triangles ids[0 .. n) (1 <= n <= kLanes; lanes past n repeat lane
+// n - 1) through their indices into Geometry::positions.
+inline VerticesN indexed_vertices(const Scene& s, const RayPre& p, const uint32_t ids[kLanes], int n) {
+    const int axis[3] = {p.kx, p.ky, p.kz};
+    VerticesN r;
+#if !defined(RT_REAL_FLOAT)
     // The four triangles' vertex indices, transposed: v0 of each, v1 of each, v2 of each.
     __m128i t[4];
     for (int j = 0; j < 4; ++j)
@@ -160,76 +306,76 @@ inline Vertices4 indexed_vertices4(const Scene& s, const RayPre& p, const uint32
     const __m128i vi[3] = {_mm_unpacklo_epi64(lo01, lo23), _mm_unpackhi_epi64(lo01, lo23),
                            _mm_unpacklo_epi64(hi01, hi23)};
     const double* base = &s.geometry.positions.data()->x;
-    const int axis[3] = {p.kx, p.ky, p.kz};
-    Vertices4 r;
     for (int k = 0; k < 3; ++k) {
         const __m256i i64 = _mm256_cvtepu32_epi64(vi[k]);
         const __m256i i3 = _mm256_add_epi64(i64, _mm256_slli_epi64(i64, 1));  // Vec3 = 3 doubles
         for (int c = 0; c < 3; ++c)
             r.v[k][c] = _mm256_sub_pd(_mm256_i64gather_pd(base + axis[c], i3, 8), _mm256_set1_pd(p.org_k[c]));
     }
+#else
+    // Seldom taken: with Real = float the leaf-order copy serves every leaf of
+    // triangles only.
+    alignas(32) Real c[3][3][kLanes];
+    for (int j = 0; j < kLanes; ++j) {
+        const Triangle& t = s.geometry.triangles[ids[j < n ? j : n - 1]];
+        for (int k = 0; k < 3; ++k)
+            for (int a = 0; a < 3; ++a) c[k][a][j] = s.geometry.positions[t.v[k]][axis[a]];
+    }
+    for (int k = 0; k < 3; ++k)
+        for (int a = 0; a < 3; ++a) r.v[k][a] = L::sub(L::load(c[k][a]), L::set1(p.org_k[a]));
+#endif
     return r;
 }
 
-// Four coordinates from the leaf-order vertices, as doubles.
-inline __m256d load4(const float* p) { return _mm256_cvtps_pd(_mm_loadu_ps(p)); }
-inline __m256d load4(const double* p) { return _mm256_loadu_pd(p); }
-
-// Vertices of the triangles at leaf positions first + j0 .. first + j0 + 4 of the
-// leaf at prims[first, first + n) from Acceleration::leaf_vertices (coordinates
+// Vertices of the triangles at leaf positions first + j0 .. first + j0 + kLanes of
+// the leaf at prims[first, first + n) from Acceleration::leaf_vertices (coordinates
 // that equal the positions exactly); lanes past the leaf's end hold other numbers.
 template <class T>
-inline Vertices4 leaf_vertices4(const T* leaf_vertices, const RayPre& p, uint32_t first, uint32_t n, uint32_t j0) {
+inline VerticesN leaf_vertices_n(const T* leaf_vertices, const RayPre& p, uint32_t first, uint32_t n, uint32_t j0) {
     const int axis[3] = {p.kx, p.ky, p.kz};
-    Vertices4 r;
+    VerticesN r;
     for (int k = 0; k < 3; ++k)
         for (int c = 0; c < 3; ++c)
-            r.v[k][c] = _mm256_sub_pd(load4(leaf_vertices + LeafVertices::at(first, n, j0, k, axis[c])),
-                                      _mm256_set1_pd(p.org_k[c]));
+            r.v[k][c] =
+                L::sub(L::load(leaf_vertices + LeafVertices::at(first, n, j0, k, axis[c])), L::set1(p.org_k[c]));
     return r;
 }
 
-// Edge stage of four triangles whose first n lanes count; returns the mask of
-// those inside whose edges the ray passes (inside_edges), with their values in `e`.
+// Edge stage of a block of triangles whose first n lanes count; returns the mask
+// of those inside whose edges the ray passes (inside_edges), with their values in `e`.
 template <bool kCull>
-inline int edges4(const RayPre& p, const Vertices4& vx, int n, Edges4& e) {
-    const __m256d sx = _mm256_set1_pd(p.sx), sy = _mm256_set1_pd(p.sy);
-    __m256d x[3], y[3], z[3];
+inline int edges_n(const RayPre& p, const VerticesN& vx, int n, EdgesN& e) {
+    const L::V sx = L::set1(p.sx), sy = L::set1(p.sy);
+    L::V x[3], y[3], z[3];
     for (int k = 0; k < 3; ++k) {
         z[k] = vx.v[k][2];
-        x[k] = _mm256_sub_pd(vx.v[k][0], _mm256_mul_pd(sx, z[k]));
-        y[k] = _mm256_sub_pd(vx.v[k][1], _mm256_mul_pd(sy, z[k]));
+        x[k] = L::sub(vx.v[k][0], L::mul(sx, z[k]));
+        y[k] = L::sub(vx.v[k][1], L::mul(sy, z[k]));
     }
-    const __m256d u = _mm256_sub_pd(_mm256_mul_pd(x[2], y[1]), _mm256_mul_pd(y[2], x[1]));
-    const __m256d v = _mm256_sub_pd(_mm256_mul_pd(x[0], y[2]), _mm256_mul_pd(y[0], x[2]));
-    const __m256d w = _mm256_sub_pd(_mm256_mul_pd(x[1], y[0]), _mm256_mul_pd(y[1], x[0]));
-    const __m256d zero = _mm256_setzero_pd();
-    const int neg = _mm256_movemask_pd(
-        _mm256_or_pd(_mm256_or_pd(_mm256_cmp_pd(u, zero, _CMP_LT_OQ), _mm256_cmp_pd(v, zero, _CMP_LT_OQ)),
-                     _mm256_cmp_pd(w, zero, _CMP_LT_OQ)));
+    const L::V u = L::sub(L::mul(x[2], y[1]), L::mul(y[2], x[1]));
+    const L::V v = L::sub(L::mul(x[0], y[2]), L::mul(y[0], x[2]));
+    const L::V w = L::sub(L::mul(x[1], y[0]), L::mul(y[1], x[0]));
+    const int neg = L::any_sign<true>(u, v, w);
     int out;
     if (kCull) {
         out = ~neg;
     } else {
-        const int pos = _mm256_movemask_pd(
-            _mm256_or_pd(_mm256_or_pd(_mm256_cmp_pd(u, zero, _CMP_GT_OQ), _mm256_cmp_pd(v, zero, _CMP_GT_OQ)),
-                         _mm256_cmp_pd(w, zero, _CMP_GT_OQ)));
-        out = ~(neg & pos);
+        out = ~(neg & L::any_sign<false>(u, v, w));
     }
     out &= (1 << n) - 1;
     if (out) {
-        _mm256_store_pd(e.ax, x[0]);
-        _mm256_store_pd(e.ay, y[0]);
-        _mm256_store_pd(e.az, z[0]);
-        _mm256_store_pd(e.bx, x[1]);
-        _mm256_store_pd(e.by, y[1]);
-        _mm256_store_pd(e.bz, z[1]);
-        _mm256_store_pd(e.cx, x[2]);
-        _mm256_store_pd(e.cy, y[2]);
-        _mm256_store_pd(e.cz, z[2]);
-        _mm256_store_pd(e.u, u);
-        _mm256_store_pd(e.v, v);
-        _mm256_store_pd(e.w, w);
+        L::store(e.ax, x[0]);
+        L::store(e.ay, y[0]);
+        L::store(e.az, z[0]);
+        L::store(e.bx, x[1]);
+        L::store(e.by, y[1]);
+        L::store(e.bz, z[1]);
+        L::store(e.cx, x[2]);
+        L::store(e.cy, y[2]);
+        L::store(e.cz, z[2]);
+        L::store(e.u, u);
+        L::store(e.v, v);
+        L::store(e.w, w);
     }
     return out;
 }
@@ -240,10 +386,10 @@ template <bool kCull, bool kShadow, class T, class Limit, class OnHit>
 inline bool test_copied_leaf(const Scene& s, const RayPre& p, const T* lv, uint32_t first, uint32_t size, Real tmin,
                              const Limit& limit, Real w[3], const OnHit& hit) {
     // A leaf's vertices are one block; primitive ids are read only for hits.
-    for (uint32_t j0 = 0; j0 < size; j0 += 4) {
-        const int n = static_cast<int>(std::min<uint32_t>(4, size - j0));
-        Edges4 e;
-        for (int mask = edges4<kCull>(p, leaf_vertices4(lv, p, first, size, j0), n, e); mask; mask &= mask - 1) {
+    for (uint32_t j0 = 0; j0 < size; j0 += kLanes) {
+        const int n = static_cast<int>(std::min<uint32_t>(kLanes, size - j0));
+        EdgesN e;
+        for (int mask = edges_n<kCull>(p, leaf_vertices_n(lv, p, first, size, j0), n, e); mask; mask &= mask - 1) {
             const int j = __builtin_ctz(mask);
             Real t;
             if (!triangle_hit<kShadow>(p, e.lane(j), tmin, limit(), t, w)) continue;
@@ -269,14 +415,15 @@ inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint16_t 
     // Separate loops per source of vertices: one loop choosing the source per
     // block of four was 3-10% slower (knot_4m_glass render, medians of 5 and 7).
     if (!(count & Bvh4Node::kIndexedLeaf)) {
-        if (const double* lv = s.accel.leaf_vertices.doubles())
-            return test_copied_leaf<kCull, kShadow>(s, p, lv, first, size, tmin, limit, w, hit);
+        if constexpr (std::is_same_v<Real, double>)
+            if (const double* lv = s.accel.leaf_vertices.doubles())
+                return test_copied_leaf<kCull, kShadow>(s, p, lv, first, size, tmin, limit, w, hit);
         if (const float* lv = s.accel.leaf_vertices.floats())
             return test_copied_leaf<kCull, kShadow>(s, p, lv, first, size, tmin, limit, w, hit);
     }
-    for (uint32_t i = first; i < end; i += 4) {
-        const int n = static_cast<int>(std::min<uint32_t>(4, end - i));
-        uint32_t ids[4];
+    for (uint32_t i = first; i < end; i += kLanes) {
+        const int n = static_cast<int>(std::min<uint32_t>(kLanes, end - i));
+        uint32_t ids[kLanes];
         bool triangles = true;
         for (int j = 0; j < n; ++j) {
             ids[j] = s.accel.bvh.prims[i + j];
@@ -289,8 +436,8 @@ inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint16_t 
             }
             continue;
         }
-        Edges4 e;
-        for (int mask = edges4<kCull>(p, indexed_vertices4(s, p, ids, n), n, e); mask; mask &= mask - 1) {
+        EdgesN e;
+        for (int mask = edges_n<kCull>(p, indexed_vertices(s, p, ids, n), n, e); mask; mask &= mask - 1) {
             const int j = __builtin_ctz(mask);
             Real t;
             if (triangle_hit<kShadow>(p, e.lane(j), tmin, limit(), t, w) && hit(ids[j], t, nullptr)) return true;
@@ -315,7 +462,7 @@ inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint16_t 
 struct StackEntry {
     int32_t child;   // node index, or ~first for a leaf
     uint16_t count;  // leaf size
-    double t;        // entry distance, to skip entries beyond the best hit
+    BoxReal t;       // entry distance, to skip entries beyond the best hit
 };
 
 template <bool kCull>
@@ -351,15 +498,15 @@ bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
     // Boxes get more slack: the entry distance of a flat box around a primitive hit at
     // exactly best_t can round a few ulps above it (kTieSlack covers the error of both
     // the slab distances and the triangle's t).
-    auto box_limit = [&]() { return found ? double(best_t * kTieSlack) : double(tmax); };
+    auto box_limit = [&]() { return found ? BoxReal(best_t * kTieSlack) : BoxReal(tmax); };
 
     if (!s.accel.bvh.nodes.empty()) {
-        const BoxRay br = box_ray(p, box_pad(s.accel.bvh.nodes[0], ray));
+        const BoxRay br = box_ray(p, s.accel.bvh, tmin);
         StackEntry stack[kStackSize];
         int sp = 0;
         // The nearest hit child is visited next without a trip through the stack;
         // the others are pushed far to near.
-        StackEntry e{0, 0, double(tmin)};
+        StackEntry e{0, 0, BoxReal(tmin)};
         for (;;) {
             if (e.child < 0) {
                 const uint32_t first = ~static_cast<uint32_t>(e.child);
@@ -371,8 +518,8 @@ bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
                     });
             } else {
                 const Bvh4Node& n = s.accel.bvh.nodes[e.child];
-                double t[4];
-                int mask = test4(n, br, double(tmin), box_limit(), t);
+                BoxReal t[4];
+                int mask = test4(n, br, BoxReal(tmin), box_limit(), t);
                 int order[4], k = 0;  // hit children, farthest first
                 while (mask) {
                     const int i = __builtin_ctz(mask);
@@ -437,7 +584,7 @@ bool any_hit(const Scene& s, const Ray& ray, Real tmin, Real tmax, uint32_t* occ
         Real t;
         if (hit_prim<false, true>(s, p, *occluder, tmin, tmax, t, w)) return true;
     }
-    const BoxRay br = box_ray(p, box_pad(s.accel.bvh.nodes[0], ray));
+    const BoxRay br = box_ray(p, s.accel.bvh, tmin);
     int32_t stack[kStackSize];
     uint16_t counts[kStackSize];
     int sp = 0;
@@ -456,8 +603,8 @@ bool any_hit(const Scene& s, const Ray& ray, Real tmin, Real tmax, uint32_t* occ
                 return true;
         } else {
             const Bvh4Node& n = s.accel.bvh.nodes[child];
-            double t[4];
-            int mask = test4(n, br, double(tmin), double(tmax), t);
+            BoxReal t[4];
+            int mask = test4(n, br, BoxReal(tmin), BoxReal(tmax), t);
             if (mask) {
                 for (;;) {
                     const int i = __builtin_ctz(mask);

@@ -173,7 +173,7 @@ bool copy_leaf(const Geometry& g, const std::vector<uint32_t>& prims, uint32_t f
 template <class T>
 size_t copy_leaves(const Geometry& g, Bvh& bvh, T* out) {
     const size_t end = LeafVertices::coordinates_for(bvh.prims.size());
-    std::fill(out + end - 3, out + end, T(0));
+    std::fill(out + 9 * bvh.prims.size(), out + end, T(0));
     auto copy = [&g, &bvh, out](size_t begin, size_t stop) {
         size_t served = 0;
         for (size_t k = begin; k < stop; ++k) {
@@ -204,7 +204,7 @@ void copy_leaf_vertices(Scene& s, ReusableStorage& storage, const BvhBuildOption
     if (kLeafBlock == 1 || g.triangles.empty()) return;
     Bvh& bvh = s.accel.bvh;
     const size_t n = bvh.prims.size();
-    if (n <= options.double_copy_max) {
+    if (std::is_same_v<Real, double> && n <= options.double_copy_max) {
         ReusableStorage doubles(LeafVertices::coordinates_for(n) * sizeof(double));
         double* const out = doubles.emplace<double>(LeafVertices::coordinates_for(n));
         if (copy_leaves(g, bvh, out) > 0) s.accel.leaf_vertices = LeafVertices(std::move(doubles), out);
