@@ -21,37 +21,6 @@ namespace {
 constexpr int kStackSize = 256;  // 3 entries per level at most; the builder bounds depth to ~80
 constexpr Real kTieSlack = 1 + 64 * std::numeric_limits<Real>::epsilon();
 
-// How far every box is padded for this ray, so that the box test is conservative
-// for the triangle and sphere tests as computed, not only for exact geometry: a
-// primitive test in Real may report a hit where the exact ray passes just outside
-// the primitive, and so outside its box. In double that error, some 1e-16 R, is
-// below the float rounding of the boxes around double vertices; around float ones
-// (PLY meshes) the boxes are tight, and no test has found a miss there: the pad is 0
-// and the double path computes what it always did. In float the error is 1e-7 R and
-// boxes fit the (float) vertices exactly: rays missed hits. The watertight test's
-// computed answer is the exact one for vertices moved by the rounding of
-// a - org, of the shear and of the edge functions, each a few u (float's unit
-// roundoff) times the largest coordinate of a - org, at most R = max|org| + the
-// largest coordinate of the scene's bounded geometry; its t is off by up to about
-// gamma(16) R (pbrt-v3 3.9.6), the sphere test's by as much. A hit so computed lies
-// within gamma(16) R of the ray point at its t and of the primitive, so padding by
-// twice gamma(32) R (twice: so that its computed t, not only some t, is inside the
-// padded slabs; 32 not 16: margin for needles, whose edge lines the rounding
-// turns the most) covers it. `extent`, when given, receives R's scene part (float only).
-inline double box_pad(const Bvh& bvh, const Ray& r, double* extent_out = nullptr) {
-    if constexpr (std::is_same_v<Real, double>) {
-        (void)bvh;
-        (void)r;
-        (void)extent_out;
-        return 0;
-    } else {
-        const float extent = bvh.extent;
-        const double org = std::max(std::fabs(r.org.x), std::max(std::fabs(r.org.y), std::fabs(r.org.z)));
-        if (extent_out) *extent_out = extent;
-        return 2 * double(gamma_bound<float>(32)) * (double(extent) + org);
-    }
-}
-
 #if !defined(RT_REAL_FLOAT)
 // Double rays test boxes in double: the float bounds convert exactly.
 using BoxReal = double;
@@ -66,23 +35,18 @@ constexpr double kSlabWiden = 1 + 2 * gamma_bound<double>(3);
 // direction is positive, so the entry is (near - org) * inv and the exit
 // (far - org) * inv; a 0 * inf = NaN (ray in a slab's boundary plane, parallel
 // to it) then falls out of the max/min below and leaves the interval open.
-// The near and far planes are measured from org_near and org_far: the origin moved
-// so that every box is padded by box_pad (0 for double rays: the origin itself).
 struct BoxRay {
-    double org_near[3], org_far[3], inv[3];
+    double org[3], inv[3];
     int near_is_hi[3];
 };
 
-inline BoxRay box_ray(const RayPre& p, double pad) {
+// Double rays are not padded (box_pad, in the float branch below); tmin is unused.
+inline BoxRay box_ray(const RayPre& p, const Bvh&, Real) {
     BoxRay b;
     for (int a = 0; a < 3; ++a) {
+        b.org[a] = p.ray.org[a];
         b.inv[a] = 1.0 / double(p.ray.dir[a]);
         b.near_is_hi[a] = std::signbit(b.inv[a]) ? 1 : 0;
-        // The near plane moves against the direction, the far plane with it.
-        // No padding keeps the origin's bits, -0 included.
-        const double o = p.ray.org[a], out = b.near_is_hi[a] ? -pad : pad;
-        b.org_near[a] = pad == 0 ? o : o + out;
-        b.org_far[a] = pad == 0 ? o : o - out;
     }
     return b;
 }
@@ -94,10 +58,9 @@ inline int test4(const Bvh4Node& n, const BoxRay& r, double tmin, double tmax, d
     for (int a = 0; a < 3; ++a) {
         const float* nearp = r.near_is_hi[a] ? n.hi[a] : n.lo[a];
         const float* farp = r.near_is_hi[a] ? n.lo[a] : n.hi[a];
-        const __m256d on = _mm256_set1_pd(r.org_near[a]), of = _mm256_set1_pd(r.org_far[a]);
-        const __m256d inv = _mm256_set1_pd(r.inv[a]);
-        const __m256d t0 = _mm256_mul_pd(_mm256_sub_pd(_mm256_cvtps_pd(_mm_load_ps(nearp)), on), inv);
-        const __m256d t1 = _mm256_mul_pd(_mm256_sub_pd(_mm256_cvtps_pd(_mm_load_ps(farp)), of), inv);
+        const __m256d o = _mm256_set1_pd(r.org[a]), inv = _mm256_set1_pd(r.inv[a]);
+        const __m256d t0 = _mm256_mul_pd(_mm256_sub_pd(_mm256_cvtps_pd(_mm_load_ps(nearp)), o), inv);
+        const __m256d t1 = _mm256_mul_pd(_mm256_sub_pd(_mm256_cvtps_pd(_mm_load_ps(farp)), o), inv);
         // max/min return their second operand when the first is NaN.
         tnear = _mm256_max_pd(t0, tnear);
         tfar = _mm256_min_pd(_mm256_mul_pd(t1, _mm256_set1_pd(kSlabWiden)), tfar);
@@ -112,8 +75,8 @@ inline int test4(const Bvh4Node& n, const BoxRay& r, double tmin, double tmax, d
         for (int a = 0; a < 3; ++a) {
             const double nearv = r.near_is_hi[a] ? n.hi[a][i] : n.lo[a][i];
             const double farv = r.near_is_hi[a] ? n.lo[a][i] : n.hi[a][i];
-            const double t0 = (nearv - r.org_near[a]) * r.inv[a];
-            const double t1 = (farv - r.org_far[a]) * r.inv[a] * kSlabWiden;
+            const double t0 = (nearv - r.org[a]) * r.inv[a];
+            const double t1 = (farv - r.org[a]) * r.inv[a] * kSlabWiden;
             tn = t0 > tn ? t0 : tn;
             tf = t1 < tf ? t1 : tf;
         }
@@ -125,8 +88,29 @@ inline int test4(const Bvh4Node& n, const BoxRay& r, double tmin, double tmax, d
 #endif
 }
 
-inline BoxRay box_ray(const RayPre& p, const Bvh& bvh, Real) { return box_ray(p, box_pad(bvh, p.ray)); }
 #else
+// How far every box is padded for a float ray, so that the box test is conservative
+// for the triangle and sphere tests as computed, not only for exact geometry: a
+// primitive test in Real may report a hit where the exact ray passes just outside
+// the primitive, and so outside its box. In double that error, some 1e-16 R, is
+// below the float rounding of the boxes around double vertices; around float ones
+// (PLY meshes) the boxes are tight, and no test has found a miss there: double rays
+// are not padded. In float the error is 1e-7 R and
+// boxes fit the (float) vertices exactly: rays missed hits. The watertight test's
+// computed answer is the exact one for vertices moved by the rounding of
+// a - org, of the shear and of the edge functions, each a few u (float's unit
+// roundoff) times the largest coordinate of a - org, at most R = max|org| + the
+// largest coordinate of the scene's bounded geometry; its t is off by up to about
+// gamma(16) R (pbrt-v3 3.9.6), the sphere test's by as much. A hit so computed lies
+// within gamma(16) R of the ray point at its t and of the primitive, so padding by
+// twice gamma(32) R (twice: so that its computed t, not only some t, is inside the
+// padded slabs; 32 not 16: margin for needles, whose edge lines the rounding
+// turns the most) covers it.
+inline double box_pad(const Bvh& bvh, const Ray& r) {
+    const double org = std::max(std::fabs(r.org.x), std::max(std::fabs(r.org.y), std::fabs(r.org.z)));
+    return 2 * double(gamma_bound<float>(32)) * (double(bvh.extent) + org);
+}
+
 // Float rays test boxes in float, conservatively: the float slab interval
 // contains the exact one of the padded box, so no box the exact ray enters once
 // padded by box_pad is rejected (docs/precision.md, "Float box tests"; the proof is
@@ -155,11 +139,10 @@ struct BoxRay {
 // test4 skip: it enters every box (and empty slots, leaves of no primitives).
 inline BoxRay box_ray(const RayPre& p, const Bvh& bvh, Real tmin) {
     BoxRay b;
-    double extent = 0;
     // Grown by 1/32 so that the origin's rounding to nearest below (at most u of
     // |org| + pad, under 1/64 of pad) still leaves a pad of at least box_pad.
-    const float pad = float(box_pad(bvh, p.ray, &extent) * (1 + 1.0 / 32));
-    bool in_domain = tmin >= 0 && extent < kBoxDomain;
+    const float pad = float(box_pad(bvh, p.ray) * (1 + 1.0 / 32));
+    bool in_domain = tmin >= 0 && bvh.extent < kBoxDomain;
     for (int a = 0; a < 3; ++a) {
         const float d = p.ray.dir[a], o = p.ray.org[a];
         b.near_is_hi[a] = std::signbit(d) ? 1 : 0;
