@@ -588,6 +588,40 @@ TEST(BvhProperty, TinyScenes) {
     }
 }
 
+// The SAH prices a leaf as its test goes: triangles in blocks of `block`, other
+// shapes (BuildBox::alone) one by one. Four unit boxes 10 apart along x, block 4:
+// as triangles a leaf of four costs one block test, less than any split (at least
+// the traversal cost 1 plus the children's share), so they stay one leaf; as
+// spheres it costs 4, and the split 2 | 2 costs 1 + (46 * 2 + 46 * 2) / 126 = 2.46
+// (box areas: both halves 2 (11 + 1 + 11) = 46, all four 2 (31 + 1 + 31) = 126).
+TEST(BvhBuild, LeavesPriceSpheresOneByOne) {
+    for (const bool alone : {false, true}) {
+        SCOPED_TRACE(alone ? "spheres" : "triangles");
+        std::vector<rt::BuildBox> boxes;
+        for (int i = 0; i < 4; ++i) {
+            rt::Box b;
+            b.lo[0] = float(10 * i), b.lo[1] = 0, b.lo[2] = 0;
+            b.hi[0] = float(10 * i + 1), b.hi[1] = 1, b.hi[2] = 1;
+            boxes.push_back(rt::BuildBox::of(b, alone));
+        }
+        rt::BvhBuildOptions options;
+        options.block = 4;
+        rt::Bvh bvh;
+        bvh.build(boxes.data(), boxes.size(), options);
+        ASSERT_EQ(bvh.nodes.size(), 1u);
+        uint32_t largest = 0;
+        int slots = 0;
+        for (int k = 0; k < 4; ++k)
+            if (bvh.nodes[0].child[k] != rt::Bvh4Node::kEmpty) {
+                ++slots;
+                ASSERT_TRUE(bvh.nodes[0].is_leaf(k));
+                largest = std::max(largest, bvh.nodes[0].leaf_size(k));
+            }
+        EXPECT_EQ(slots, alone ? 4 : 1);
+        EXPECT_EQ(largest, alone ? 1u : 4u);
+    }
+}
+
 TEST(BvhProperty, EmptyScene) {
     rt::SceneDesc d;
     d.materials.push_back({});

@@ -59,14 +59,18 @@ struct Box {
 
 // A primitive's bounds handed to the builder, laid out as the builder's SIMD
 // loads want them (lo in floats 0..2, hi in 4..6). The builder sorts these in
-// place; `id` is set by Bvh::build.
+// place; `id` is set by Bvh::build. `alone` is 1 for a primitive that leaves
+// test one at a time (spheres), 0 for one they test in blocks of kLeafBlock
+// (triangles): the SAH prices leaves that way.
 struct BuildBox {
     float lo[3];
     uint32_t id;
     float hi[3];
-    uint32_t unused;
+    uint32_t alone;
 
-    static BuildBox of(const Box& b) { return {{b.lo[0], b.lo[1], b.lo[2]}, 0, {b.hi[0], b.hi[1], b.hi[2]}, 0}; }
+    static BuildBox of(const Box& b, bool alone = false) {
+        return {{b.lo[0], b.lo[1], b.lo[2]}, 0, {b.hi[0], b.hi[1], b.hi[2]}, alone ? 1u : 0u};
+    }
 };
 
 struct alignas(64) Bvh4Node {
@@ -131,7 +135,7 @@ inline constexpr uint32_t kLeafBlock = 1;
 struct BvhBuildOptions {
     uint32_t max_leaf = 8;        // a leaf never holds more primitives, whatever SAH says (1..1024)
     float traversal_cost = 1;     // SAH cost of one traversal step, relative to one leaf block test
-    uint32_t block = kLeafBlock;  // SAH counts a leaf's cost in blocks of this many primitives (1..16)
+    uint32_t block = kLeafBlock;  // SAH counts a leaf's triangles in blocks of this many (1..16), others one by one
     int bins = 16;                // SAH bins per axis for large ranges (2..16; small ranges use fewer)
     bool sah = true;              // false: object-median splits only (fastest build, slower rays)
     // Leaf-order vertices (scene.h, LeafVertices) in double for scenes of up to

@@ -4,8 +4,8 @@
 // axes in one pass (SIMD), takes the plane of lowest surface-area cost, and
 // partitions the range in place, accumulating both sides' bounds as it goes,
 // so each split reads the primitives twice. A child that would cost more split
-// than as a leaf becomes a leaf (a leaf's cost counted in blocks of
-// BvhBuildOptions::block primitives, as many as one leaf test takes). Large
+// than as a leaf becomes a leaf (a leaf's cost counted as its leaf test goes:
+// triangles in blocks of BvhBuildOptions::block, other shapes one by one). Large
 // subtrees are built on their own threads; nodes come from one array through an
 // atomic counter.
 #include <sys/mman.h>
@@ -150,7 +150,8 @@ inline float centre2(const BuildBox& b, int axis) { return b.lo[axis] + b.hi[axi
 struct Range {
     uint32_t begin = 0, end = 0;
     Box box, cbox;
-    bool leaf = false;  // decided: stays a leaf
+    bool leaf = false;   // decided: stays a leaf
+    uint32_t alone = 0;  // how many of its primitives are BuildBox::alone
     uint32_t count() const { return end - begin; }
 };
 
@@ -180,16 +181,17 @@ struct Builder {
     BvhBuildOptions opt;
 
     // SAH: r stays a leaf when its best split, of cost `best` (the sum of each
-    // side's area times its primitive count), costs no less than testing its
+    // side's area times its leaf cost), costs no less than testing its
     // primitives, and a leaf may hold them.
     bool stays_leaf(const Range& r, float best) const {
         const float parent_area = r.box.area();
         const float split_cost = parent_area > 0 ? opt.traversal_cost + best / parent_area : HUGE_VALF;
-        return split_cost >= blocks(r.count()) && r.count() <= opt.max_leaf;
+        return split_cost >= leaf_cost(r.count(), r.alone) && r.count() <= opt.max_leaf;
     }
 
-    // The cost of testing n primitives: leaves test them `block` at a time.
-    float blocks(uint32_t n) const { return float((n + opt.block - 1) / opt.block); }
+    // The cost of testing n primitives of which `alone` are BuildBox::alone in one
+    // leaf: the others in blocks of `block`, as the leaf test takes them.
+    float leaf_cost(uint32_t n, uint32_t alone) const { return float((n - alone + opt.block - 1) / opt.block + alone); }
 
     // Bins r's centroids along all axes; returns false when r should stay a leaf,
     // otherwise the best axis and bin.
@@ -206,27 +208,32 @@ struct Builder {
             float best_cost = HUGE_VALF;
             int best_axis = -1, best_bin = 0;
             Box8 bins[3][kBins];
-            uint32_t counts[3][kBins];
-            bin_all(r, scale, nb, bins, counts);
+            uint32_t counts[3][kBins], alones[3][kBins];
+            bin_all(r, scale, nb, bins, counts, alones);
             for (int axis = 0; axis < 3; ++axis) {
                 if (!(extent[axis] > 0)) continue;
                 float right_area[kBins];
-                uint32_t right_count[kBins];
+                uint32_t right_count[kBins], right_alone[kBins];
                 Box8 acc = empty8();
-                uint32_t n = 0;
+                uint32_t n = 0, alone = 0;
                 for (int b = nb - 1; b > 0; --b) {
                     acc = min8(acc, bins[axis][b]);
                     n += counts[axis][b];
+                    alone += alones[axis][b];
                     right_area[b] = area8(acc);
                     right_count[b] = n;
+                    right_alone[b] = alone;
                 }
                 acc = empty8();
                 n = 0;
+                alone = 0;
                 for (int b = 0; b < nb - 1; ++b) {
                     acc = min8(acc, bins[axis][b]);
                     n += counts[axis][b];
+                    alone += alones[axis][b];
                     if (n == 0 || right_count[b + 1] == 0) continue;
-                    const float cost = area8(acc) * blocks(n) + right_area[b + 1] * blocks(right_count[b + 1]);
+                    const float cost = area8(acc) * leaf_cost(n, alone) +
+                                       right_area[b + 1] * leaf_cost(right_count[b + 1], right_alone[b + 1]);
                     if (cost < best_cost) {
                         best_cost = cost;
                         best_axis = axis;
@@ -246,37 +253,42 @@ struct Builder {
     }
 
     // Bins r's centroids along all three axes: bins[axis][bin] is the box of the
-    // primitives whose centroid falls in that bin, counts[axis][bin] their number.
+    // primitives whose centroid falls in that bin, counts[axis][bin] their number,
+    // alones[axis][bin] how many of them are BuildBox::alone.
     // (Binning a sample of a large range was tried: it misses the few large
     // primitives, such as a floor under a scanned mesh, that dominate the
     // areas; SAH cost +23% on a generated knot.)
-    void bin_all(const Range& r, const float scale[3], int nb, Box8 bins[3][kBins], uint32_t counts[3][kBins]) const {
+    void bin_all(const Range& r, const float scale[3], int nb, Box8 bins[3][kBins], uint32_t counts[3][kBins],
+                 uint32_t alones[3][kBins]) const {
         if (r.count() >= kParallelSplit) {
             // Each half on its own thread, then the bins merged (min and sum do
             // not depend on the order, so neither does the tree).
             const uint32_t half = r.begin + r.count() / 2;
             Box8 other[3][kBins];
-            uint32_t other_counts[3][kBins];
-            in_parallel([&] { bin_range(r, r.begin, half, scale, nb, other, other_counts); },
-                        [&] { bin_range(r, half, r.end, scale, nb, bins, counts); });
+            uint32_t other_counts[3][kBins], other_alones[3][kBins];
+            in_parallel([&] { bin_range(r, r.begin, half, scale, nb, other, other_counts, other_alones); },
+                        [&] { bin_range(r, half, r.end, scale, nb, bins, counts, alones); });
             for (int a = 0; a < 3; ++a)
                 for (int b = 0; b < nb; ++b) {
                     bins[a][b] = min8(bins[a][b], other[a][b]);
                     counts[a][b] += other_counts[a][b];
+                    alones[a][b] += other_alones[a][b];
                 }
             return;
         }
-        bin_range(r, r.begin, r.end, scale, nb, bins, counts);
+        bin_range(r, r.begin, r.end, scale, nb, bins, counts, alones);
     }
 
     // bin_all over refs[begin, end) of r.
     void bin_range(const Range& r, uint32_t begin, uint32_t end, const float scale[3], int nb, Box8 bins[3][kBins],
-                   uint32_t counts[3][kBins]) const {
+                   uint32_t counts[3][kBins], uint32_t alones[3][kBins]) const {
         for (int a = 0; a < 3; ++a)
             for (int b = 0; b < nb; ++b) {
                 bins[a][b] = empty8();
                 counts[a][b] = 0;
+                alones[a][b] = 0;
             }
+        const bool mixed = r.alone > 0;  // else every alones[][] stays 0
 #if defined(__AVX__)
         // bin_of on three axes at once (the same float operations, so the same bins)
         const __m128 cmin = _mm_setr_ps(r.cbox.lo[0], r.cbox.lo[1], r.cbox.lo[2], 0);
@@ -290,6 +302,7 @@ struct Builder {
             for (int a = 0; a < 3; ++a) {
                 bins[a][b[a]] = min8(bins[a][b[a]], v);
                 ++counts[a][b[a]];
+                if (mixed) alones[a][b[a]] += refs[i].alone;
             }
         };
 #else
@@ -299,6 +312,7 @@ struct Builder {
                 const int b = bin_of(refs[i], a, r.cbox.lo[a], scale[a], nb);
                 bins[a][b] = min8(bins[a][b], v);
                 ++counts[a][b];
+                if (mixed) alones[a][b] += refs[i].alone;
             }
         };
 #endif
@@ -315,6 +329,7 @@ struct Builder {
     // bounds of both sides' boxes and centroids.
     struct Parted {
         uint32_t mid = 0;
+        uint32_t lalone = 0;  // BuildBox::alone primitives that went left
         Box8 lbox = empty8(), lcen = empty8(), rbox = empty8(), rcen = empty8();
     };
     template <class GoesLeft>
@@ -326,6 +341,7 @@ struct Builder {
             const Box8 v = load8(b);
             p.lbox = min8(p.lbox, v);
             p.lcen = min8(p.lcen, centroid8(v));
+            p.lalone += b.alone;
         };
         auto add_right = [&](const BuildBox& b) {
             const Box8 v = load8(b);
@@ -361,7 +377,7 @@ struct Builder {
         for (uint32_t k = 0; k < (n == 2 ? 1u : n); ++k) {
             Box one, rest;
             for (uint32_t i = 0; i < n; ++i) (i == k ? one : rest).extend(p[i].lo, p[i].hi);
-            const float cost = one.area() + rest.area() * blocks(n - 1);
+            const float cost = one.area() + rest.area() * leaf_cost(n - 1, r.alone - p[k].alone);
             if (cost < best) {
                 best = cost;
                 alone = k;
@@ -410,6 +426,7 @@ struct Builder {
                 else
                     std::swap_ranges(refs + q.mid, refs + q.mid + b_left, refs + half);
                 p.mid = q.mid + b_left;
+                p.lalone += q.lalone;
                 p.lbox = min8(p.lbox, q.lbox);
                 p.lcen = min8(p.lcen, q.lcen);
                 p.rbox = min8(p.rbox, q.rbox);
@@ -423,6 +440,8 @@ struct Builder {
             left.cbox = to_box(p.lcen);
             right.box = to_box(p.rbox);
             right.cbox = to_box(p.rcen);
+            left.alone = p.lalone;
+            right.alone = r.alone - p.lalone;
             mid = p.mid;
             if (mid != r.begin && mid != r.end) {
                 left.begin = r.begin;
@@ -449,7 +468,9 @@ struct Builder {
 
     void bounds(Range& r) const {
         Box box, cbox;
+        r.alone = 0;
         for (uint32_t i = r.begin; i < r.end; ++i) {
+            r.alone += refs[i].alone;
             box.extend(refs[i].lo, refs[i].hi);
             const float c[3] = {centre2(refs[i], 0), centre2(refs[i], 1), centre2(refs[i], 2)};
             cbox.extend(c, c);

@@ -125,7 +125,10 @@ void add_mesh(Geometry& s, BuildReport& report, MeshDesc& m, BuildBox* boxes, st
 
 // boxes[id] for the bounded primitives from id `first` on.
 void add_boxes(const Geometry& g, uint32_t first, BuildBox* boxes) {
-    for (uint32_t id = first; id < g.bounded_count(); ++id) boxes[id] = BuildBox::of(g.bounds(g.shape_of<true>(id)));
+    for (uint32_t id = first; id < g.bounded_count(); ++id) {
+        const ShapeRef shape = g.shape_of<true>(id);
+        boxes[id] = BuildBox::of(g.bounds(shape), shape.kind != ShapeKind::Triangle);
+    }
 }
 
 }  // namespace
