@@ -28,7 +28,8 @@ using BoxReal = double;
 // Widening of the exit distance that makes the slab test conservative despite
 // rounding in (bound - org) * inv_dir (pbrt-v3 section 3.9.2: 1 + 2 gamma(3)).
 // Flat boxes (axis-aligned walls) make the slabs meet at one t, so without the
-// widening a ray along a wall's edge could miss both walls.
+// widening a ray along a wall's edge could miss both walls. tmax is widened alike:
+// an entry at exactly tmax may be computed up to gamma(3) above it.
 constexpr double kSlabWiden = 1 + 2 * gamma_bound<double>(3);
 
 // Per-ray data of the box test. For each axis the near plane is lo when the
@@ -51,27 +52,12 @@ inline BoxRay box_ray(const RayPre& p, const Bvh&, Real) {
     return b;
 }
 
-// Entry distances of the four children into `t` (HUGE_VAL for a miss), and a hit mask.
-inline int test4(const Bvh4Node& n, const BoxRay& r, double tmin, double tmax, double t[4]) {
-#if defined(__AVX__)
-    __m256d tnear = _mm256_set1_pd(tmin), tfar = _mm256_set1_pd(tmax);
-    for (int a = 0; a < 3; ++a) {
-        const float* nearp = r.near_is_hi[a] ? n.hi[a] : n.lo[a];
-        const float* farp = r.near_is_hi[a] ? n.lo[a] : n.hi[a];
-        const __m256d o = _mm256_set1_pd(r.org[a]), inv = _mm256_set1_pd(r.inv[a]);
-        const __m256d t0 = _mm256_mul_pd(_mm256_sub_pd(_mm256_cvtps_pd(_mm_load_ps(nearp)), o), inv);
-        const __m256d t1 = _mm256_mul_pd(_mm256_sub_pd(_mm256_cvtps_pd(_mm_load_ps(farp)), o), inv);
-        // max/min return their second operand when the first is NaN.
-        tnear = _mm256_max_pd(t0, tnear);
-        tfar = _mm256_min_pd(_mm256_mul_pd(t1, _mm256_set1_pd(kSlabWiden)), tfar);
-    }
-    const __m256d hit = _mm256_cmp_pd(tnear, tfar, _CMP_LE_OQ);
-    _mm256_storeu_pd(t, _mm256_blendv_pd(_mm256_set1_pd(HUGE_VAL), tnear, hit));
-    return _mm256_movemask_pd(hit);
-#else
+// Entry distances of the four children into `t` (HUGE_VAL for a miss), and a hit
+// mask; lane by lane (test4_simd, where there is one, gives the same bits).
+inline int test4_scalar(const Bvh4Node& n, const BoxRay& r, double tmin, double tmax, double t[4]) {
     int mask = 0;
     for (int i = 0; i < 4; ++i) {
-        double tn = tmin, tf = tmax;
+        double tn = tmin, tf = tmax * kSlabWiden;
         for (int a = 0; a < 3; ++a) {
             const double nearv = r.near_is_hi[a] ? n.hi[a][i] : n.lo[a][i];
             const double farv = r.near_is_hi[a] ? n.lo[a][i] : n.hi[a][i];
@@ -85,8 +71,28 @@ inline int test4(const Bvh4Node& n, const BoxRay& r, double tmin, double tmax, d
         mask |= h ? 1 << i : 0;
     }
     return mask;
-#endif
 }
+
+#if defined(__AVX__)
+#define RT_BOX_SIMD 1
+// test4_scalar, four lanes per AVX instruction.
+inline int test4_simd(const Bvh4Node& n, const BoxRay& r, double tmin, double tmax, double t[4]) {
+    __m256d tnear = _mm256_set1_pd(tmin), tfar = _mm256_set1_pd(tmax * kSlabWiden);
+    for (int a = 0; a < 3; ++a) {
+        const float* nearp = r.near_is_hi[a] ? n.hi[a] : n.lo[a];
+        const float* farp = r.near_is_hi[a] ? n.lo[a] : n.hi[a];
+        const __m256d o = _mm256_set1_pd(r.org[a]), inv = _mm256_set1_pd(r.inv[a]);
+        const __m256d t0 = _mm256_mul_pd(_mm256_sub_pd(_mm256_cvtps_pd(_mm_load_ps(nearp)), o), inv);
+        const __m256d t1 = _mm256_mul_pd(_mm256_sub_pd(_mm256_cvtps_pd(_mm_load_ps(farp)), o), inv);
+        // max/min return their second operand when the first is NaN.
+        tnear = _mm256_max_pd(t0, tnear);
+        tfar = _mm256_min_pd(_mm256_mul_pd(t1, _mm256_set1_pd(kSlabWiden)), tfar);
+    }
+    const __m256d hit = _mm256_cmp_pd(tnear, tfar, _CMP_LE_OQ);
+    _mm256_storeu_pd(t, _mm256_blendv_pd(_mm256_set1_pd(HUGE_VAL), tnear, hit));
+    return _mm256_movemask_pd(hit);
+}
+#endif
 
 #else
 // How far every box is padded for a float ray, so that the box test is conservative
@@ -162,24 +168,9 @@ inline BoxRay box_ray(const RayPre& p, const Bvh& bvh, Real tmin) {
     return b;
 }
 
-// Entry distances of the four children into `t` (meaningful for hits only), and a hit mask.
-inline int test4(const Bvh4Node& n, const BoxRay& r, float tmin, float tmax, float t[4]) {
-#if defined(__SSE2__)
-    __m128 tnear = _mm_set1_ps(tmin), tfar = _mm_set1_ps(tmax);
-    for (int a = 0; a < 3; ++a) {
-        const float* nearp = r.near_is_hi[a] ? n.hi[a] : n.lo[a];
-        const float* farp = r.near_is_hi[a] ? n.lo[a] : n.hi[a];
-        const __m128 t0 =
-            _mm_mul_ps(_mm_sub_ps(_mm_load_ps(nearp), _mm_set1_ps(r.org_near[a])), _mm_set1_ps(r.inv_near[a]));
-        const __m128 t1 =
-            _mm_mul_ps(_mm_sub_ps(_mm_load_ps(farp), _mm_set1_ps(r.org_far[a])), _mm_set1_ps(r.inv_far[a]));
-        // max/min return their second operand when the first is NaN.
-        tnear = _mm_max_ps(t0, tnear);
-        tfar = _mm_min_ps(t1, tfar);
-    }
-    _mm_storeu_ps(t, tnear);
-    return _mm_movemask_ps(_mm_cmple_ps(tnear, tfar));
-#else
+// Entry distances of the four children into `t` (meaningful for hits only), and a
+// hit mask; lane by lane (test4_simd, where there is one, gives the same bits).
+inline int test4_scalar(const Bvh4Node& n, const BoxRay& r, float tmin, float tmax, float t[4]) {
     int mask = 0;
     for (int i = 0; i < 4; ++i) {
         float tn = tmin, tf = tmax;
@@ -195,9 +186,38 @@ inline int test4(const Bvh4Node& n, const BoxRay& r, float tmin, float tmax, flo
         mask |= tn <= tf ? 1 << i : 0;
     }
     return mask;
-#endif
+}
+
+#if defined(__SSE2__)
+#define RT_BOX_SIMD 1
+// test4_scalar, four lanes per SSE instruction.
+inline int test4_simd(const Bvh4Node& n, const BoxRay& r, float tmin, float tmax, float t[4]) {
+    __m128 tnear = _mm_set1_ps(tmin), tfar = _mm_set1_ps(tmax);
+    for (int a = 0; a < 3; ++a) {
+        const float* nearp = r.near_is_hi[a] ? n.hi[a] : n.lo[a];
+        const float* farp = r.near_is_hi[a] ? n.lo[a] : n.hi[a];
+        const __m128 t0 =
+            _mm_mul_ps(_mm_sub_ps(_mm_load_ps(nearp), _mm_set1_ps(r.org_near[a])), _mm_set1_ps(r.inv_near[a]));
+        const __m128 t1 =
+            _mm_mul_ps(_mm_sub_ps(_mm_load_ps(farp), _mm_set1_ps(r.org_far[a])), _mm_set1_ps(r.inv_far[a]));
+        // max/min return their second operand when the first is NaN.
+        tnear = _mm_max_ps(t0, tnear);
+        tfar = _mm_min_ps(t1, tfar);
+    }
+    _mm_storeu_ps(t, tnear);
+    return _mm_movemask_ps(_mm_cmple_ps(tnear, tfar));
 }
 #endif
+#endif
+
+// The box test of the traversal: the SIMD kernel where the target has one.
+inline int test4(const Bvh4Node& n, const BoxRay& r, BoxReal tmin, BoxReal tmax, BoxReal t[4]) {
+#if defined(RT_BOX_SIMD)
+    return test4_simd(n, r, tmin, tmax, t);
+#else
+    return test4_scalar(n, r, tmin, tmax, t);
+#endif
+}
 
 // Tests one BVH primitive; returns true with t (and weights) on a hit in (tmin, tmax).
 template <bool kCull, bool kShadow = false>
@@ -549,6 +569,25 @@ bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
 }
 
 }  // namespace
+
+double box_padding(const Bvh& bvh, const Ray& ray) {
+#if defined(RT_REAL_FLOAT)
+    return box_pad(bvh, ray);
+#else
+    (void)bvh, (void)ray;
+    return 0;
+#endif
+}
+
+int test_node_boxes(const Bvh& bvh, const Bvh4Node& node, const Ray& ray, Real tmin, Real tmax, Real t[4],
+                    bool scalar) {
+    const BoxRay br = box_ray(prepare(ray), bvh, tmin);
+    BoxReal bt[4];
+    const int mask = scalar ? test4_scalar(node, br, BoxReal(tmin), BoxReal(tmax), bt)
+                            : test4(node, br, BoxReal(tmin), BoxReal(tmax), bt);
+    for (int i = 0; i < 4; ++i) t[i] = Real(bt[i]);
+    return mask;
+}
 
 bool closest_hit(const Scene& scene, const Ray& ray, Real tmin, Real tmax, bool cull, Hit& hit) {
     return cull ? closest<true>(scene, ray, tmin, tmax, hit) : closest<false>(scene, ray, tmin, tmax, hit);
