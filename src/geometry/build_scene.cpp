@@ -23,7 +23,8 @@ inline bool degenerate(const std::vector<Vec3>& p, uint32_t a, uint32_t b, uint3
 // Meshes with at least this many faces are converted by two threads.
 constexpr size_t kParallelFaces = size_t(1) << 16;
 
-// Appends one mesh: its vertices (taken from `m` when it is the first), its
+// Appends one mesh: its vertices (taken from `m` when it is the first, else
+// copied, and `m`'s released before anything else is written), its
 // non-degenerate triangles with their BVH boxes (boxes[id] for triangle id;
 // room for every triangle of the scene), and, when smooth, vertex normals
 // averaged over this mesh only, weighted by area (spec section 3, "Mesh";
@@ -33,8 +34,10 @@ void add_mesh(Geometry& s, BuildReport& report, MeshDesc& m, BuildBox* boxes, st
     const uint32_t base = static_cast<uint32_t>(s.positions.size());
     if (base == 0 && s.positions.capacity() <= m.positions.size())
         s.positions = std::move(m.positions);
-    else
+    else {
         s.positions.insert(s.positions.end(), m.positions.begin(), m.positions.end());
+        std::vector<Vec3>().swap(m.positions);
+    }
     const bool smooth = m.shading == ShadingMode::Smooth;
     const std::vector<uint32_t>& idx = m.indices;
     const std::vector<Vec3>& pos = s.positions;
