@@ -49,7 +49,8 @@ struct RayCounts {
 
 // Per-thread state: the last occluder found for each point light (see any_hit),
 // which speeds up tracing without changing any result, and the rays traced so far.
-struct TraceCache {
+// Written for every ray, so it owns its cache lines (no other thread's data shares them).
+struct alignas(64) TraceCache {
     std::vector<uint32_t> last_occluder;
     RayCounts rays;
 };

@@ -66,13 +66,19 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
         }
     };
 
-    // Without a progress callback the calling thread is worker 0; with one, it watches.
-    // A worker whose thread cannot start renders on this thread as it starts
-    // (HelperThread); the others find fewer tiles left.
+    // Workers run on threads of their own; the calling thread watches (progress) or
+    // waits, and renders only as the one worker of a single-threaded render. A worker
+    // on the calling thread would keep its per-ray state (TraceCache, spilled locals)
+    // on the stack right below this frame, whose variables the other workers read for
+    // every ray: a cache line shared that way, depending on where the stack starts,
+    // made renders up to 1.4x slower (docs/speed.md). A worker whose thread cannot
+    // start renders on this thread as it starts (HelperThread); the others find fewer
+    // tiles left.
+    const bool caller_renders = !watch && threads == 1;
     std::vector<HelperThread> pool;
     pool.reserve(static_cast<size_t>(threads));
     try {
-        for (int i = watch ? 0 : 1; i < threads; ++i) pool.emplace_back([&work, i] { work(i); });
+        for (int i = caller_renders ? 1 : 0; i < threads; ++i) pool.emplace_back([&work, i] { work(i); });
     } catch (...) {
         // Out of memory starting a thread: stop the ones that started (they find no
         // tile left; the pool's destructor joins them), then report.
@@ -91,7 +97,7 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
             }
             lock.lock();
         }
-    } else {
+    } else if (caller_renders) {
         work(0);
     }
     for (HelperThread& t : pool) t.join();
