@@ -45,14 +45,19 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
         for (int tile; (tile = next.fetch_add(1, std::memory_order_relaxed)) < tiles;) {
             const int x0 = (tile % tiles_x) * kTile, y0 = (tile / tiles_x) * kTile;
             const int x1 = std::min(x0 + kTile, cam.width), y1 = std::min(y0 + kTile, cam.height);
+            // A tile's pixels go to the image a row at a time: a tile row (48 bytes)
+            // shares cache lines with its neighbours', which the other workers render
+            // at the same time.
             for (int y = y0; y < y1; ++y) {
+                uint8_t row[kTile * 3];
                 for (int x = x0; x < x1; ++x) {
                     const Vec3 c = trace_primary(scene, cam.primary_ray(x, y), topt, &cache);
-                    uint8_t* px = &img.rgb[(static_cast<size_t>(y) * cam.width + x) * 3];
+                    uint8_t* px = &row[(x - x0) * 3];
                     px[0] = quantize(c.x, options.rounding);
                     px[1] = quantize(c.y, options.rounding);
                     px[2] = quantize(c.z, options.rounding);
                 }
+                std::copy(row, row + (x1 - x0) * 3, &img.rgb[(static_cast<size_t>(y) * cam.width + x0) * 3]);
             }
             if (watch) done.fetch_add(1, std::memory_order_relaxed);
         }
