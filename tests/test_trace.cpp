@@ -74,6 +74,20 @@ std::string dump(const RunResult& r) {
 
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
+// ./raytracer `options` --trace `pixel` ("x,y") --trace-json `json_path` `scene`: the run,
+// and its JSON trace parsed (null when the run failed: callers assert the exit code).
+struct Traced {
+    RunResult run;
+    json doc;
+};
+Traced trace_run(const std::string& scene, const std::string& pixel, const std::string& json_path,
+                 std::vector<std::string> options = {}) {
+    options.insert(options.end(), {"--trace", pixel, "--trace-json", json_path, scene});
+    Traced t{run_raytracer(options), json()};
+    if (t.run.exit_code == 0) t.doc = json::parse(read_text(json_path));
+    return t;
+}
+
 // A glass prism (index 1.5) seen head-on: cross-section x in [-1, 1] at z = -2 (the
 // front face, towards the camera), the hypotenuse from (x -1, z -2) to (x 1, z -4) and
 // the side x = 1. Every face winds counter-clockwise seen from outside. A camera ray
@@ -139,13 +153,11 @@ TEST(Trace, CommandLineTracePixelEqualsTheWrittenImage) {
         const rt::CameraDesc& cam = desc.cameras[c];
         const int x = std::uniform_int_distribution<int>(0, cam.width - 1)(rng);
         const int y = std::uniform_int_distribution<int>(0, cam.height - 1)(rng);
-        const std::string json_path = tmp / "trace.json";
-        const RunResult r = run_raytracer({"-q", "--trace", std::to_string(x) + "," + std::to_string(y), "--camera",
-                                           std::to_string(c + 1), "--trace-json", json_path, path});
+        const auto [r, doc] = trace_run(path, std::to_string(x) + "," + std::to_string(y), tmp / "trace.json",
+                                        {"-q", "--camera", std::to_string(c + 1)});
         ASSERT_EQ(r.exit_code, 0) << path << dump(r);
         rt::Image img;
         ASSERT_TRUE(load_png(tmp / cam.image_name, img)) << tmp / cam.image_name;
-        const json doc = json::parse(read_text(json_path));
         const std::vector<uint8_t> expected = pixel_of(img, x, y);
         EXPECT_EQ(doc["pixel"].get<std::vector<int>>(), std::vector<int>(expected.begin(), expected.end()))
             << path << " camera " << c + 1 << " pixel " << x << "," << y;
@@ -191,10 +203,9 @@ TEST(Trace, ShapeNamesCountSkippedFacesAndUseTheFilesIds) {
 TEST(Trace, PrismShowsTotalInternalReflection) {
     TempDir tmp;
     write_text(tmp / "prism.json", kPrismScene);
-    const RunResult r = run_raytracer({"--trace", "2,2", "--trace-json", tmp / "t.json", tmp / "prism.json"});
+    const auto [r, doc] = trace_run(tmp / "prism.json", "2,2", tmp / "t.json");
     ASSERT_EQ(r.exit_code, 0) << dump(r);
     EXPECT_EQ(list_files(tmp.path()), (std::vector<std::string>{"prism.json", "t.json"})) << "no image";
-    const json doc = json::parse(read_text(tmp / "t.json"));
     const json& cam = doc["ray"];
     EXPECT_EQ(cam["kind"], "camera");
     EXPECT_EQ(cam["hit"]["object"], "Mesh 7, face 1");
@@ -248,9 +259,8 @@ TEST(Trace, LightsAreReportedLitOrShadowedByTheirOccluder) {
                   "Plane": {"_id": "3", "Material": "2", "Point": "1", "Normal": "0 0 1"}}}})";
     TempDir tmp;
     write_text(tmp / "l.json", scene);
-    const RunResult r = run_raytracer({"--trace", "1,1", "--trace-json", tmp / "t.json", tmp / "l.json"});
+    const auto [r, doc] = trace_run(tmp / "l.json", "1,1", tmp / "t.json");
     ASSERT_EQ(r.exit_code, 0) << dump(r);
-    const json doc = json::parse(read_text(tmp / "t.json"));
     const json& ray = doc["ray"];
     EXPECT_EQ(ray["hit"]["object"], "Plane 3");
     ASSERT_EQ(ray["lights"].size(), 2u);
@@ -284,18 +294,15 @@ TEST(Trace, ABackFaceTheCameraRayPassesOverIsReported) {
                   "Plane": {"_id": "2", "Material": "1", "Point": "1", "Normal": "0 0 1"}}}})";
     TempDir tmp;
     write_text(tmp / "c.json", scene);
-    const RunResult culled = run_raytracer({"--trace", "1,1", "--trace-json", tmp / "a.json", tmp / "c.json"});
+    const auto [culled, a] = trace_run(tmp / "c.json", "1,1", tmp / "a.json");
     ASSERT_EQ(culled.exit_code, 0) << dump(culled);
-    const json a = json::parse(read_text(tmp / "a.json"));
     EXPECT_EQ(a["ray"]["hit"]["object"], "Plane 2");
     EXPECT_NEAR(a["ray"]["hit"]["t"].get<double>(), 5, kTol);
     EXPECT_EQ(a["ray"]["culled"]["object"], "Triangle 5");
     EXPECT_NEAR(a["ray"]["culled"]["t"].get<double>(), 3, kTol);
     EXPECT_TRUE(contains(culled.out, "back face culled: Triangle 5 at t = 3")) << dump(culled);
-    const RunResult all =
-        run_raytracer({"--no-cull", "--trace", "1,1", "--trace-json", tmp / "b.json", tmp / "c.json"});
+    const auto [all, b] = trace_run(tmp / "c.json", "1,1", tmp / "b.json", {"--no-cull"});
     ASSERT_EQ(all.exit_code, 0) << dump(all);
-    const json b = json::parse(read_text(tmp / "b.json"));
     EXPECT_EQ(b["ray"]["hit"]["object"], "Triangle 5");
     EXPECT_EQ(b["ray"]["hit"]["front"], false);
     EXPECT_EQ(b["ray"]["cull"], false);
