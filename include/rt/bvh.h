@@ -164,9 +164,11 @@ struct Bvh {
 // every child box of `node` that the exact ray org + t dir, t in [tmin, tmax],
 // enters once the box is grown by box_padding(bvh, ray) on every side (tmin >= 0);
 // it never accepts an empty slot. Returns the mask of accepted children and their
-// entry distances in t (for accepted ones: at most the exact entry rounded up to the
-// test's precision). `scalar` runs the lane-by-lane kernel instead of the SIMD one,
-// which gives the same bits.
+// entry distances in t (for accepted ones: in float at most the exact entry rounded
+// up to a float; in double at most a factor 1 + 2^-50 above it, three roundings,
+// give or take a few subnormals where it underflows).
+// `scalar` runs the lane-by-lane kernel instead of the SIMD one, which gives the
+// same bits.
 int test_node_boxes(const Bvh& bvh, const Bvh4Node& node, const Ray& ray, Real tmin, Real tmax, Real t[4], bool scalar);
 // How far the box test pads every box for `ray`: 0 in double; in float, the rounding
 // of the float primitive tests (traverse.cpp, box_pad).

@@ -101,8 +101,8 @@ inline int test4_simd(const Bvh4Node& n, const BoxRay& r, double tmin, double tm
 // the primitive, and so outside its box. In double that error, some 1e-16 R, is
 // below the float rounding of the boxes around double vertices; around float ones
 // (PLY meshes) the boxes are tight, and no test has found a miss there: double rays
-// are not padded. In float the error is 1e-7 R and
-// boxes fit the (float) vertices exactly: rays missed hits. The watertight test's
+// are not padded. In float the error is 1e-7 R and boxes fit the (float) vertices
+// exactly: rays missed hits. The watertight test's
 // computed answer is the exact one for vertices moved by the rounding of
 // a - org, of the shear and of the edge functions, each a few u (float's unit
 // roundoff) times the largest coordinate of a - org, at most R = max|org| + the
