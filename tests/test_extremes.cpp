@@ -703,7 +703,7 @@ TEST(ExtremesGlass, IndexOneGlassIsInvisible) {
     const rt::Scene s_with = build(with);
     // The box's faces must face outward for the test to mean anything.
     for (size_t t = 0; t < s_with.geometry.triangles.size(); ++t) {
-        if (s_with.geometry.triangles[t].material != 2) continue;
+        if (s_with.geometry.run_of(static_cast<uint32_t>(t)).material != 2) continue;
         const rt::Vec3 c = (s_with.geometry.positions[s_with.geometry.triangles[t].v[0]] +
                             s_with.geometry.positions[s_with.geometry.triangles[t].v[1]] +
                             s_with.geometry.positions[s_with.geometry.triangles[t].v[2]]) /

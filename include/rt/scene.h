@@ -6,6 +6,7 @@
 //   report    what the build measured and skipped
 // Triangles and spheres sit under one BVH; infinite planes are tested by every ray.
 #pragma once
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <iterator>
@@ -57,12 +58,30 @@ enum class ShapeKind : uint32_t { Triangle, Sphere, Plane };
 inline constexpr ShapeKind kShapeKinds[] = {ShapeKind::Triangle, ShapeKind::Sphere, ShapeKind::Plane};
 static_assert(std::size(kShapeKinds) == size_t(ShapeKind::Plane) + 1, "kShapeKinds lists every kind, in order");
 
+// A triangle is its three vertices; its material and shading are those of its run
+// (TriangleRun), so that a triangle costs 12 bytes.
 struct Triangle {
     uint32_t v[3];  // into Geometry::positions (and vertex_normals when smooth)
-    uint32_t material : 31;
-    uint32_t smooth : 1;  // 1: interpolate vertex normals; 0: flat
 };
-static_assert(sizeof(Triangle) == 16, "Triangle must stay 16 bytes");
+static_assert(sizeof(Triangle) == 12, "Triangle must stay 12 bytes");
+
+// Consecutive triangles with one material and shading: a mesh, or a Triangle object,
+// merged with the run before when both are the same.
+struct TriangleRun {
+    uint32_t first;     // its first triangle in Geometry::triangles
+    uint32_t material;  // into SceneSetup::materials
+    bool smooth;        // interpolate vertex normals (else flat)
+};
+
+// The last of `items` (ascending by `first`) whose `first` is at most i, or null
+// when there is none. Items left empty share their `first` with the next one,
+// which is the one found.
+template <class T>
+const T* last_starting_at(const std::vector<T>& items, uint32_t first_of_i, uint32_t T::*first) {
+    auto it = std::upper_bound(items.begin(), items.end(), first_of_i,
+                               [first](uint32_t i, const T& item) { return i < item.*first; });
+    return it == items.begin() ? nullptr : &*--it;
+}
 
 struct Sphere {
     Vec3 center;
@@ -105,6 +124,7 @@ struct Geometry {
     std::vector<Vec3> positions;
     std::vector<Vec3> vertex_normals;  // area-weighted, per mesh; unit length or zero
     UninitVector<Triangle> triangles;
+    std::vector<TriangleRun> runs;  // cover every triangle, ascending, runs[0].first == 0
     std::vector<Sphere> spheres;
     std::vector<Plane> planes;
 
@@ -142,6 +162,9 @@ struct Geometry {
         if (kBvh || id < spheres.size()) return {ShapeKind::Sphere, id};
         return {ShapeKind::Plane, id - static_cast<uint32_t>(spheres.size())};
     }
+
+    // The run of triangle i (i < triangles.size()).
+    const TriangleRun& run_of(uint32_t i) const { return *last_starting_at(runs, i, &TriangleRun::first); }
 
     // Unit geometric normal of the triangle a, b, c, counter-clockwise front (spec 3, "Triangle").
     static Vec3 face_normal(Vec3 a, Vec3 b, Vec3 c) { return normalize(cross(b - a, c - a)); }
@@ -203,16 +226,17 @@ struct Geometry {
         switch (h.kind) {
             case ShapeKind::Triangle: {
                 const Triangle& tri = triangles[h.index];
+                const TriangleRun& run = run_of(h.index);
                 const Vec3 ng =
                     h.corners ? face_normal(corner(h, 0), corner(h, 1), corner(h, 2)) : face_normal(h.index);
                 Vec3 ns = ng;
-                if (tri.smooth) {
+                if (run.smooth) {
                     const Vec3 n = vertex_normals[tri.v[0]] * h.w[0] + vertex_normals[tri.v[1]] * h.w[1] +
                                    vertex_normals[tri.v[2]] * h.w[2];
                     const Real len = length(n);
                     if (len > 0) ns = n / len;
                 }
-                return {ng, ns, tri.material};
+                return {ng, ns, run.material};
             }
             case ShapeKind::Sphere: {
                 const Sphere& sp = spheres[h.index];

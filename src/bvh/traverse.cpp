@@ -301,9 +301,12 @@ inline VerticesN indexed_vertices(const Scene& s, const RayPre& p, const uint32_
     VerticesN r;
 #if !defined(RT_REAL_FLOAT)
     // The four triangles' vertex indices, transposed: v0 of each, v1 of each, v2 of each.
+    // (Two loads each: a 16-byte load could read past the last 12-byte triangle.)
     __m128i t[4];
-    for (int j = 0; j < 4; ++j)
-        t[j] = _mm_loadu_si128(reinterpret_cast<const __m128i*>(&s.geometry.triangles[ids[j < n ? j : n - 1]]));
+    for (int j = 0; j < 4; ++j) {
+        const uint32_t* v = s.geometry.triangles[ids[j < n ? j : n - 1]].v;
+        t[j] = _mm_insert_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(v)), static_cast<int>(v[2]), 2);
+    }
     const __m128i lo01 = _mm_unpacklo_epi32(t[0], t[1]), lo23 = _mm_unpacklo_epi32(t[2], t[3]);
     const __m128i hi01 = _mm_unpackhi_epi32(t[0], t[1]), hi23 = _mm_unpackhi_epi32(t[2], t[3]);
     const __m128i vi[3] = {_mm_unpacklo_epi64(lo01, lo23), _mm_unpackhi_epi64(lo01, lo23),

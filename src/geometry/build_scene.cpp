@@ -23,6 +23,14 @@ inline bool degenerate(const std::vector<Vec3>& p, uint32_t a, uint32_t b, uint3
 // Meshes with at least this many faces are converted by two threads.
 constexpr size_t kParallelFaces = size_t(1) << 16;
 
+// Starts a run of triangles at `first` (Geometry::runs): a new one unless the last
+// run has the same material and shading, or is empty (it then gives way).
+void add_run(Geometry& g, uint32_t first, uint32_t material, bool smooth) {
+    if (!g.runs.empty() && g.runs.back().first == first) g.runs.pop_back();
+    if (!g.runs.empty() && g.runs.back().material == material && g.runs.back().smooth == smooth) return;
+    g.runs.push_back({first, material, smooth});
+}
+
 // Appends one mesh: its vertices (taken from `m` when it is the first, else
 // copied, and `m`'s released before anything else is written), its
 // non-degenerate triangles with their BVH boxes (boxes[id] for triangle id;
@@ -62,8 +70,9 @@ void add_mesh(Geometry& s, BuildReport& report, MeshDesc& m, BuildBox* boxes, st
     };
     // Triangles and boxes of faces [f0, f1) go to slots first + f (pages
     // first touched by the thread that writes them); degenerate faces are
-    // marked with material 0x7fffffff and squeezed out below.
-    constexpr uint32_t kDropped = 0x7fffffff;
+    // marked with a first vertex no mesh has and squeezed out below.
+    constexpr uint32_t kDropped = ~0u;
+    add_run(s, static_cast<uint32_t>(first), m.material, smooth);
     s.triangles.resize(first + faces);
     // Every allocation happens here, not on the helper thread, where running out
     // of memory would end the process instead of reaching main's error message.
@@ -77,14 +86,12 @@ void add_mesh(Geometry& s, BuildReport& report, MeshDesc& m, BuildBox* boxes, st
             t.v[0] = a;
             t.v[1] = b;
             t.v[2] = c;
-            t.smooth = smooth ? 1 : 0;
             Vec3 n;
             if (degenerate(pos, a, b, c, n)) {
-                t.material = kDropped;
+                t.v[0] = kDropped;
                 ++dropped;
                 continue;
             }
-            t.material = m.material;
             boxes[first + f] = BuildBox::of(s.bounds({ShapeKind::Triangle, static_cast<uint32_t>(first + f)}));
         }
         return dropped;
@@ -112,7 +119,7 @@ void add_mesh(Geometry& s, BuildReport& report, MeshDesc& m, BuildBox* boxes, st
     // tie-break between equally near hits).
     size_t out = first;
     for (size_t i = first; i < first + faces; ++i) {
-        if (s.triangles[i].material == kDropped) {
+        if (s.triangles[i].v[0] == kDropped) {
             ++report.degenerate_triangles;
             skipped.push_back(static_cast<uint32_t>(i - first));
             continue;

@@ -1,5 +1,4 @@
 // ShapeNames::name: a primitive as the scene file names it (rt/scene.h).
-#include <algorithm>
 #include <string>
 
 #include "rt/scene.h"
@@ -10,12 +9,11 @@ std::string ShapeNames::name(ShapeRef s) const {
     const std::string index = std::to_string(s.index);
     switch (s.kind) {
         case ShapeKind::Triangle: {
-            // The last mesh starting at or before the triangle; meshes left empty by
-            // skipped faces share their first_triangle with the next one.
-            auto it = std::upper_bound(meshes.begin(), meshes.end(), s.index,
-                                       [](uint32_t i, const Mesh& m) { return i < m.first_triangle; });
-            if (it == meshes.begin()) return "triangle #" + index;
-            const Mesh& m = *--it;
+            // The last mesh starting at or before the triangle (meshes left empty by
+            // skipped faces share their first_triangle with the next one).
+            const Mesh* found = last_starting_at(meshes, s.index, &Mesh::first_triangle);
+            if (!found) return "triangle #" + index;
+            const Mesh& m = *found;
             if (m.triangle_object) return "Triangle " + m.id;
             uint32_t face = s.index - m.first_triangle;
             for (uint32_t skipped_face : m.skipped) {
