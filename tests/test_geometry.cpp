@@ -479,6 +479,54 @@ TEST(GeometryScene, CullingIgnoresBackFacesOnly) {
     EXPECT_TRUE(rt::any_hit(s, up, 0, HUGE_VAL)) << "shadow rays never cull";
 }
 
+// Each triangle's material and shading come from its mesh, through Geometry::runs:
+// equal neighbours share a run, a mesh of degenerate faces only leaves none behind,
+// and surface() reports each triangle's own material.
+TEST(GeometryScene, TrianglesTakeTheirMeshsMaterialAndShading) {
+    rt::SceneDesc d = empty_desc();
+    d.materials.resize(3);
+    struct Spec {
+        uint32_t material;
+        rt::ShadingMode shading;
+        bool degenerate;
+    };
+    const Spec specs[] = {{0, rt::ShadingMode::Flat, false},  {0, rt::ShadingMode::Flat, false},
+                          {2, rt::ShadingMode::Smooth, true}, {1, rt::ShadingMode::Smooth, false},
+                          {1, rt::ShadingMode::Flat, false},  {2, rt::ShadingMode::Flat, true},
+                          {1, rt::ShadingMode::Flat, false}};
+    std::vector<const Spec*> want;  // per kept triangle
+    for (size_t i = 0; i < std::size(specs); ++i) {
+        rt::MeshDesc m;
+        const Real z = Real(i);
+        m.positions = {{0, 0, z}, {1, 0, z}, {0, 1, z}, {1, 1, z}, {2, 2, z}};
+        // Two faces; a degenerate mesh's are collinear.
+        m.indices =
+            specs[i].degenerate ? std::vector<uint32_t>{0, 3, 4, 4, 3, 0} : std::vector<uint32_t>{0, 1, 2, 1, 3, 2};
+        m.material = specs[i].material;
+        m.shading = specs[i].shading;
+        d.meshes.push_back(m);
+        if (!specs[i].degenerate) want.insert(want.end(), 2, &specs[i]);
+    }
+    const rt::Scene s = rt::build_scene(d);
+    const rt::Geometry& g = s.geometry;
+    ASSERT_EQ(g.triangles.size(), want.size());
+    // Runs: meshes 0+1 (merged), 3, 4+6 (5 left nothing, so 6 joins 4).
+    ASSERT_EQ(g.runs.size(), 3u);
+    EXPECT_EQ(g.runs[0].first, 0u);
+    EXPECT_EQ(g.runs[1].first, 4u);
+    EXPECT_EQ(g.runs[2].first, 6u);
+    for (uint32_t t = 0; t < g.triangles.size(); ++t) {
+        const rt::TriangleRun& r = g.run_of(t);
+        EXPECT_EQ(r.material, want[t]->material) << "triangle " << t;
+        EXPECT_EQ(r.smooth, want[t]->shading == rt::ShadingMode::Smooth) << "triangle " << t;
+        rt::Hit h;
+        h.kind = rt::ShapeKind::Triangle;
+        h.index = t;
+        h.w[0] = h.w[1] = h.w[2] = Real(1) / 3;
+        EXPECT_EQ(g.surface(h, {0, 0, 0}).material, want[t]->material) << "triangle " << t;
+    }
+}
+
 TEST(GeometryScene, ClosestOfMixedPrimitives) {
     // Along -z from z = 10: plane z = 0 at t 10, sphere radius 1 at z = 3 (t = 6), triangle at z = 5 (t = 5).
     rt::SceneDesc d = empty_desc();
