@@ -116,7 +116,7 @@ TEST(Stats, JsonHasTheDocumentedFieldsWithPlausibleValues) {
     EXPECT_GT(im.at("rays_per_second").get<double>(), 0);
     EXPECT_GE(im.at("bvh").at("nodes").get<int>(), 1);
     EXPECT_GE(im.at("bvh").at("depth").get<int>(), 1);
-    EXPECT_EQ(im.at("bvh").at("max_leaf"), 8);
+    EXPECT_EQ(im.at("bvh").at("max_leaf"), rt::kDefaultMaxLeaf);
     EXPECT_EQ(im.at("bvh").at("bins"), 16);
     EXPECT_EQ(im.at("bvh").at("split"), "sah");
     EXPECT_GT(im.at("peak_rss_bytes").get<uint64_t>(), 1u << 20);
@@ -407,7 +407,7 @@ TEST(Stats, DefaultBvhOptionsBuildTheSameTree) {
     const rt::SceneDesc d = rt::load_scene(write_scene(dir.path(), 16, 16));
     const rt::Scene a = rt::build_scene(d);
     rt::BvhBuildOptions o;
-    EXPECT_EQ(o.max_leaf, 8u);
+    EXPECT_EQ(o.max_leaf, rt::kDefaultMaxLeaf);
     EXPECT_EQ(o.bins, 16);
     EXPECT_FLOAT_EQ(o.traversal_cost, 1.0f);
     EXPECT_EQ(o.block, rt::kLeafBlock);

@@ -71,7 +71,8 @@ int raytracer_cli(int argc, char** argv) {
                    10000);
     cli::add_number(app, "--epsilon-scale", "F", "multiply every scene's ShadowRayEpsilon by F (> 0)", o.epsilon_scale,
                     "a positive number", [](double f) { return f > 0 && f < 1e30; });
-    cli::add_whole(app, "--bvh-leaf", "N", "largest BVH leaf (1..1024, default 8)", o.bvh.max_leaf, 1, 1024);
+    cli::add_whole(app, "--bvh-leaf", "N", "largest BVH leaf (1..1024, default 8 in double, 16 in float)",
+                   o.bvh.max_leaf, 1, 1024);
     cli::add_whole(app, "--bvh-bins", "N", "SAH bins per axis (2..16, default 16)", o.bvh.bins, 2, 16);
     cli::add_choice(app, "--bvh-split", "sah (default) or median (object-median splits, no SAH)", o.bvh.sah,
                     {{"sah", true}, {"median", false}});
