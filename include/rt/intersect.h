@@ -105,14 +105,14 @@ inline bool triangle_hit(const RayPre& p, const TriEdges& e, Real tmin, Real tma
     // rays pay for it (one bound per occluded ray): on every candidate hit of
     // closest-hit rays it cost 5-10% of render time.
     if (kShadow) {
-        const Real max_zt = std::fabs(p.sz) * std::fmax(std::fabs(e.az), std::fmax(std::fabs(e.bz), std::fabs(e.cz)));
-        const Real max_xt = std::fmax(std::fabs(e.ax), std::fmax(std::fabs(e.bx), std::fabs(e.cx)));
-        const Real max_yt = std::fmax(std::fabs(e.ay), std::fmax(std::fabs(e.by), std::fabs(e.cy)));
-        const Real max_e = std::fmax(std::fabs(e.u), std::fmax(std::fabs(e.v), std::fabs(e.w)));
+        const Real max_zt = std::fabs(p.sz) * max_num(std::fabs(e.az), max_num(std::fabs(e.bz), std::fabs(e.cz)));
+        const Real max_xt = max_num(std::fabs(e.ax), max_num(std::fabs(e.bx), std::fabs(e.cx)));
+        const Real max_yt = max_num(std::fabs(e.ay), max_num(std::fabs(e.by), std::fabs(e.cy)));
+        const Real max_e = max_num(std::fabs(e.u), max_num(std::fabs(e.v), std::fabs(e.w)));
         const Real dz = gamma_bound(3) * max_zt;
         const Real dx = gamma_bound(5) * (max_xt + max_zt), dy = gamma_bound(5) * (max_yt + max_zt);
         const Real de = 2 * (gamma_bound(2) * max_xt * max_yt + dy * max_xt + dx * max_yt);
-        const Real max_o = std::fmax(std::fabs(p.ray.org.x), std::fmax(std::fabs(p.ray.org.y), std::fabs(p.ray.org.z)));
+        const Real max_o = max_num(std::fabs(p.ray.org.x), max_num(std::fabs(p.ray.org.y), std::fabs(p.ray.org.z)));
         const Real dt =
             3 * (gamma_bound(3) * max_e * max_zt + de * max_zt + dz * max_e) * std::fabs(inv) + gamma_bound(8) * max_o;
         if (tt <= dt) return false;

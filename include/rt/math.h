@@ -36,12 +36,18 @@ inline Vec3& operator*=(Vec3& a, Real s) {
     return a;
 }
 
+// std::fmax and std::fmin without the libm call GCC makes for them (fmax has no one
+// instruction unless math is finite-only): the larger (smaller) of a and b, the
+// other one when one is NaN. Equal zeros of opposite signs may give either zero.
+inline Real max_num(Real a, Real b) { return b != b || a > b ? a : b; }
+inline Real min_num(Real a, Real b) { return b != b || a < b ? a : b; }
+
 inline Real dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 inline Vec3 cross(Vec3 a, Vec3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
 inline Real length(Vec3 a) { return std::sqrt(dot(a, a)); }
 inline Vec3 normalize(Vec3 a) { return a / length(a); }
-inline Vec3 vmin(Vec3 a, Vec3 b) { return {std::fmin(a.x, b.x), std::fmin(a.y, b.y), std::fmin(a.z, b.z)}; }
-inline Vec3 vmax(Vec3 a, Vec3 b) { return {std::fmax(a.x, b.x), std::fmax(a.y, b.y), std::fmax(a.z, b.z)}; }
+inline Vec3 vmin(Vec3 a, Vec3 b) { return {min_num(a.x, b.x), min_num(a.y, b.y), min_num(a.z, b.z)}; }
+inline Vec3 vmax(Vec3 a, Vec3 b) { return {max_num(a.x, b.x), max_num(a.y, b.y), max_num(a.z, b.z)}; }
 inline bool isfinite(Vec3 a) { return std::isfinite(a.x) && std::isfinite(a.y) && std::isfinite(a.z); }
 
 struct Ray {

@@ -22,8 +22,8 @@ constexpr int kNoMedium = -1;
 // radiance (the official scenes render to the same bytes either way).
 constexpr Real kMinWeight = Real(1e-4);
 
-inline Real max_component(Vec3 v) { return std::fmax(v.x, std::fmax(v.y, v.z)); }
-inline Real max_abs(Vec3 v) { return std::fmax(std::fabs(v.x), std::fmax(std::fabs(v.y), std::fabs(v.z))); }
+inline Real max_component(Vec3 v) { return max_num(v.x, max_num(v.y, v.z)); }
+inline Real max_abs(Vec3 v) { return max_num(std::fabs(v.x), max_num(std::fabs(v.y), std::fabs(v.z))); }
 
 struct Integrator {
     const Scene& s;
@@ -105,7 +105,7 @@ struct Integrator {
             }
             const Vec3 e = light.intensity / d2;  // irradiance E = I / d^2 (spec 2.8)
             const Vec3 h = normalize(l + to_eye);
-            const Real ndoth = std::fmax(Real(0), dot(n, h));
+            const Real ndoth = max_num(Real(0), dot(n, h));
             const Real lobe = phong_pow(ndoth, m.phong_exponent);
             const Vec3 added = (m.diffuse * ndotl + m.specular * lobe) * e;
             c += added;
