@@ -18,11 +18,17 @@ struct Image {
 };
 
 // A channel clamped to [0, 255]; NaN becomes 0.
-Real clamp_channel(Real value);
+inline Real clamp_channel(Real value) {
+    if (!(value > 0)) return 0;  // negative and NaN
+    return value >= 255 ? Real(255) : value;
+}
 
 // clamp_channel, then to an integer as `rounding` says: the one conversion of radiance
-// to an 8-bit channel (images and --trace).
-uint8_t quantize(Real value, Rounding rounding);
+// to an 8-bit channel (images and --trace). Inline: three per pixel.
+inline uint8_t quantize(Real value, Rounding rounding) {
+    const Real c = clamp_channel(value);
+    return static_cast<uint8_t>(rounding == Rounding::Nearest ? std::floor(c + Real(0.5)) : c);
+}
 
 // Writes a PNG atomically (write_file_atomic, rt/atomic_file.h): to a temporary name
 // beside `path`, then renamed over it, so a failure never leaves a half-written image. Throws rt::InputError naming

@@ -12,16 +12,6 @@
 
 namespace rt {
 
-Real clamp_channel(Real value) {
-    if (!(value > 0)) return 0;  // negative and NaN
-    return value >= 255 ? Real(255) : value;
-}
-
-uint8_t quantize(Real value, Rounding rounding) {
-    const Real c = clamp_channel(value);
-    return static_cast<uint8_t>(rounding == Rounding::Nearest ? std::floor(c + Real(0.5)) : c);
-}
-
 namespace {
 void append_bytes(void* context, void* data, int size) {
     auto* out = static_cast<std::string*>(context);
