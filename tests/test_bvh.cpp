@@ -237,7 +237,7 @@ void check_structure(const rt::Scene& s) {
     }
     for (size_t i = 0; i < n; ++i) ASSERT_EQ(seen[i], 1) << "primitive " << i;
 
-    // Walk the 4-wide tree: each node reached once, leaves cover bvh.prims exactly once,
+    // Walk the tree: each node reached once, leaves cover bvh.prims exactly once,
     // each slot's box contains its primitives or its child node's slot boxes.
     std::vector<int> reached(bvh.nodes.size(), 0), covered(n, 0);
     struct Item {
@@ -254,10 +254,10 @@ void check_structure(const rt::Scene& s) {
         ASSERT_EQ(reached[it.node]++, 0) << "node " << it.node << " reached twice";
         levels = std::max(levels, it.level);
         ASSERT_LE(it.level, 64) << "tree too deep";
-        const rt::Bvh4Node& nd = bvh.nodes[it.node];
+        const rt::BvhNode& nd = bvh.nodes[it.node];
         int used = 0;
-        for (int k = 0; k < 4; ++k) {
-            if (nd.child[k] == rt::Bvh4Node::kEmpty) {
+        for (int k = 0; k < rt::BvhNode::kWidth; ++k) {
+            if (nd.child[k] == rt::BvhNode::kEmpty) {
                 EXPECT_EQ(nd.count[k], 0) << "empty slot with primitives at node " << it.node;
                 continue;
             }
@@ -276,9 +276,9 @@ void check_structure(const rt::Scene& s) {
             } else {
                 const uint32_t c = static_cast<uint32_t>(nd.child[k]);
                 ASSERT_LT(c, bvh.nodes.size()) << "child index out of range at node " << it.node;
-                const rt::Bvh4Node& ch = bvh.nodes[c];
-                for (int j = 0; j < 4; ++j) {
-                    if (ch.child[j] == rt::Bvh4Node::kEmpty) continue;
+                const rt::BvhNode& ch = bvh.nodes[c];
+                for (int j = 0; j < rt::BvhNode::kWidth; ++j) {
+                    if (ch.child[j] == rt::BvhNode::kEmpty) continue;
                     for (int a = 0; a < 3; ++a)
                         if (!(nd.lo[a][k] <= ch.lo[a][j] && ch.hi[a][j] <= nd.hi[a][k])) ++bad_boxes;
                 }
@@ -472,7 +472,7 @@ void shoot(const rt::Scene& s, Checker& ck, Rng& rng, int rays, Real extent) {
 // How run_soup's mesh positions are given: as random doubles; rounded to float,
 // as a PLY mesh's are, so that leaves read them from Acceleration::leaf_vertices;
 // or rounded but for one coordinate in every fourth triangle, so that some leaves
-// read the copy and the others (Bvh4Node::kIndexedLeaf) their triangles' positions.
+// read the copy and the others (BvhNode::kIndexedLeaf) their triangles' positions.
 enum class Vertices { kDouble, kFloat, kMixed };
 
 // Whether the leaf's primitives (prims[first, first + size)) are all triangles,
@@ -509,16 +509,16 @@ std::pair<size_t, size_t> check_leaf_vertices(const rt::Scene& s, const rt::BvhB
     const double* doubles = s.accel.leaf_vertices.doubles();
     const bool want_doubles = std::is_same_v<Real, double> && s.accel.bvh.prims.size() <= options.double_copy_max;
     size_t servable = 0, leaves = 0;
-    for (const rt::Bvh4Node& nd : s.accel.bvh.nodes)
-        for (int k = 0; k < 4; ++k) {
-            if (!nd.is_leaf(k) || nd.child[k] == rt::Bvh4Node::kEmpty) continue;
+    for (const rt::BvhNode& nd : s.accel.bvh.nodes)
+        for (int k = 0; k < rt::BvhNode::kWidth; ++k) {
+            if (!nd.is_leaf(k) || nd.child[k] == rt::BvhNode::kEmpty) continue;
             ++leaves;
             const uint32_t first = ~static_cast<uint32_t>(nd.child[k]), n = nd.leaf_size(k);
             const LeafKind kind = leaf_kind(s, first, n);
             const bool serve = want_doubles ? kind.triangles : kind.floats;
             servable += serve;
             if (!floats && !doubles) continue;
-            EXPECT_EQ(!(nd.count[k] & rt::Bvh4Node::kIndexedLeaf), serve) << "leaf at prims[" << first << "]";
+            EXPECT_EQ(!(nd.count[k] & rt::BvhNode::kIndexedLeaf), serve) << "leaf at prims[" << first << "]";
             if (!serve) continue;
             for (uint32_t j = 0; j < n; ++j) {
                 const rt::Triangle& t = s.geometry.triangles[s.accel.bvh.prims[first + j]];
@@ -613,8 +613,8 @@ TEST(BvhBuild, LeavesPriceSpheresOneByOne) {
         ASSERT_EQ(bvh.nodes.size(), 1u);
         uint32_t largest = 0;
         int slots = 0;
-        for (int k = 0; k < 4; ++k)
-            if (bvh.nodes[0].child[k] != rt::Bvh4Node::kEmpty) {
+        for (int k = 0; k < rt::BvhNode::kWidth; ++k)
+            if (bvh.nodes[0].child[k] != rt::BvhNode::kEmpty) {
                 ++slots;
                 ASSERT_TRUE(bvh.nodes[0].is_leaf(k));
                 largest = std::max(largest, bvh.nodes[0].leaf_size(k));
@@ -1018,23 +1018,24 @@ TEST(BvhBoxTest, NeverRejectsABoxTheExactRayEnters) {
     for (int k = 0; k < 200000; ++k) {
         rt::Bvh bvh;
         const SlabCase c = finite_slab_case(rng, bvh);
-        rt::Bvh4Node n;
-        for (int i = 0; i < 4; ++i) {  // the case's box in every slot but the last (empty)
+        constexpr int kWidth = rt::BvhNode::kWidth;
+        rt::BvhNode n;
+        for (int i = 0; i < kWidth; ++i) {  // the case's box in every slot but the last (empty)
             for (int a = 0; a < 3; ++a) {
-                n.lo[a][i] = i < 3 ? c.lo[a] : HUGE_VALF;
-                n.hi[a][i] = i < 3 ? c.hi[a] : -HUGE_VALF;
+                n.lo[a][i] = i < kWidth - 1 ? c.lo[a] : HUGE_VALF;
+                n.hi[a][i] = i < kWidth - 1 ? c.hi[a] : -HUGE_VALF;
             }
-            n.child[i] = rt::Bvh4Node::kEmpty;
+            n.child[i] = rt::BvhNode::kEmpty;
             n.count[i] = 0;
         }
         const rt::Ray ray{c.org, c.dir};
-        Real t[4], ts[4];
+        Real t[kWidth], ts[kWidth];
         const int mask = rt::test_node_boxes(bvh, n, ray, c.tmin, c.tmax, t, false);
         const int mask_scalar = rt::test_node_boxes(bvh, n, ray, c.tmin, c.tmax, ts, true);
         if (mask != mask_scalar) ++lane_mismatch;
-        for (int i = 0; i < 4; ++i)
+        for (int i = 0; i < kWidth; ++i)
             if ((mask >> i & 1) && std::memcmp(&t[i], &ts[i], sizeof(Real)) != 0) ++lane_mismatch;
-        EXPECT_EQ(mask & 8, 0) << "an empty slot was entered";
+        EXPECT_EQ(mask >> (kWidth - 1), 0) << "an empty slot was entered";
         std::vector<Frac> nears;
         if (!exact_enters(c, Quad(rt::box_padding(bvh, ray)), &nears)) continue;
         ++entered;

@@ -415,13 +415,13 @@ TEST(Stats, DefaultBvhOptionsBuildTheSameTree) {
     const rt::Scene b = rt::build_scene(d, o);
     ASSERT_EQ(a.accel.bvh.nodes.size(), b.accel.bvh.nodes.size());
     EXPECT_EQ(0, std::memcmp(a.accel.bvh.nodes.begin(), b.accel.bvh.nodes.begin(),
-                             a.accel.bvh.nodes.size() * sizeof(rt::Bvh4Node)));
+                             a.accel.bvh.nodes.size() * sizeof(rt::BvhNode)));
     EXPECT_EQ(a.accel.bvh.prims, b.accel.bvh.prims);
     o.max_leaf = 1;
     const rt::Scene c = rt::build_scene(d, o);
-    for (const rt::Bvh4Node& n : c.accel.bvh.nodes)
-        for (int i = 0; i < 4; ++i)
-            if (n.is_leaf(i) && n.child[i] != rt::Bvh4Node::kEmpty) {
+    for (const rt::BvhNode& n : c.accel.bvh.nodes)
+        for (int i = 0; i < rt::BvhNode::kWidth; ++i)
+            if (n.is_leaf(i) && n.child[i] != rt::BvhNode::kEmpty) {
                 EXPECT_LE(n.leaf_size(i), 1u);
             }
 }

@@ -24,7 +24,7 @@ float round_up_to_float(Real x);
 
 // The box types: Box (below) for every box the code handles as a whole; a
 // BuildBox for each primitive the builder sorts (a Box's corners around its id);
-// Bvh4Node's child slots (four boxes, structure of arrays, for the SIMD slab
+// BvhNode's child slots (kWidth boxes, structure of arrays, for the SIMD slab
 // test); and, inside the builder only, Box8, a box held in one AVX register as
 // (lo, -hi) so that one min instruction extends both corners (bvh_build.cpp).
 
@@ -73,16 +73,17 @@ struct BuildBox {
     }
 };
 
-struct alignas(64) Bvh4Node {
+struct alignas(64) BvhNode {
+    static constexpr int kWidth = 4;  // children per node
     // Child boxes, structure of arrays: lo[axis][child], hi[axis][child].
     // Empty slots hold lo = +inf, hi = -inf and are never entered.
-    float lo[3][4];
-    float hi[3][4];
+    float lo[3][kWidth];
+    float hi[3][kWidth];
     // child[i] >= 0: index of an inner node. child[i] < 0: a leaf holding
     // prims[first .. first + count) with first = ~child[i] and count = count[i].
-    int32_t child[4];
-    uint16_t count[4];
-    uint8_t pad[8];
+    int32_t child[kWidth];
+    uint16_t count[kWidth];
+    uint8_t pad[2 * kWidth];  // to kWidth / 2 whole cache lines
 
     static constexpr int32_t kEmpty = INT32_MIN;  // an unused slot (count 0)
     // Set in a leaf's count when its primitives are read through their ids, not
@@ -92,7 +93,7 @@ struct alignas(64) Bvh4Node {
     static uint32_t leaf_size_of(uint16_t c) { return c & ~uint32_t(kIndexedLeaf); }
     uint32_t leaf_size(int i) const { return leaf_size_of(count[i]); }
 };
-static_assert(sizeof(Bvh4Node) == 128, "Bvh4Node must stay two cache lines");
+static_assert(sizeof(BvhNode) == 32 * BvhNode::kWidth, "BvhNode must stay kWidth / 2 cache lines");
 
 // Fixed-capacity node storage: the builder reserves an upper bound of nodes
 // without touching the pages (so unused capacity costs no memory) and fills
@@ -101,10 +102,10 @@ class NodeArray {
 public:
     size_t size() const { return size_; }
     bool empty() const { return size_ == 0; }
-    const Bvh4Node& operator[](size_t i) const { return data_[i]; }
-    Bvh4Node& operator[](size_t i) { return data_[i]; }
-    const Bvh4Node* begin() const { return data_.get(); }
-    const Bvh4Node* end() const { return data_.get() + size_; }
+    const BvhNode& operator[](size_t i) const { return data_[i]; }
+    BvhNode& operator[](size_t i) { return data_[i]; }
+    const BvhNode* begin() const { return data_.get(); }
+    const BvhNode* end() const { return data_.get() + size_; }
     void clear() {
         data_.reset();
         size_ = 0;
@@ -116,9 +117,9 @@ public:
 
 private:
     struct Free {
-        void operator()(Bvh4Node* p) const;
+        void operator()(BvhNode* p) const;
     };
-    std::unique_ptr<Bvh4Node[], Free> data_;
+    std::unique_ptr<BvhNode[], Free> data_;
     size_t size_ = 0;
 };
 
@@ -152,7 +153,7 @@ struct BvhBuildOptions {
 struct Bvh {
     NodeArray nodes;              // nodes[0] is the root (absent when there are no primitives)
     std::vector<uint32_t> prims;  // primitive ids in leaf order
-    int depth = 0;                // of the 4-wide tree, root = 1
+    int depth = 0;                // in nodes, root = 1
     float extent = 0;             // largest magnitude of the root's bounds (0 when empty)
 
     // Builds over `boxes[i]` (one box per primitive id i, n of them), sorting them
@@ -173,7 +174,8 @@ struct Bvh {
 // give or take a few subnormals where it underflows).
 // `scalar` runs the lane-by-lane kernel instead of the SIMD one, which gives the
 // same bits.
-int test_node_boxes(const Bvh& bvh, const Bvh4Node& node, const Ray& ray, Real tmin, Real tmax, Real t[4], bool scalar);
+int test_node_boxes(const Bvh& bvh, const BvhNode& node, const Ray& ray, Real tmin, Real tmax, Real t[BvhNode::kWidth],
+                    bool scalar);
 // How far the box test pads every box for `ray`: 0 in double; in float, the rounding
 // of the float primitive tests (traverse.cpp, box_pad).
 double box_padding(const Bvh& bvh, const Ray& ray);

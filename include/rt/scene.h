@@ -268,7 +268,7 @@ struct Geometry {
 //    BVH build's boxes were in (ReusableStorage: its pages are already touched,
 //    and on this VM a fresh page costs more than the copy into it).
 // Every other leaf (a sphere, a coordinate that is not a float) is marked
-// Bvh4Node::kIndexedLeaf and reads its primitives through their ids.
+// BvhNode::kIndexedLeaf and reads its primitives through their ids.
 class LeafVertices {
 public:
     // Coordinates for n triangles: loads of kLeafBlock lanes from the last leaf's

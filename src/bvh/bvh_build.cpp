@@ -1,13 +1,13 @@
-// BVH construction by binned SAH (Wald 2007), building the 4-wide tree directly:
-// a node starts as one range of primitives and keeps splitting its largest
-// splittable child until it has four. A split bins the centroids along all three
-// axes in one pass (SIMD), takes the plane of lowest surface-area cost, and
-// partitions the range in place, accumulating both sides' bounds as it goes,
-// so each split reads the primitives twice. A child that would cost more split
-// than as a leaf becomes a leaf (a leaf's cost counted as its leaf test goes:
-// triangles in blocks of BvhBuildOptions::block, other shapes one by one). Large
-// subtrees are built on their own threads; nodes come from one array through an
-// atomic counter.
+// BVH construction by binned SAH (Wald 2007), building the tree of
+// BvhNode::kWidth-wide nodes directly: a node starts as one range of primitives and
+// keeps splitting its largest splittable child until it has kWidth. A split bins the
+// centroids along all three axes in one pass (SIMD), takes the plane of lowest
+// surface-area cost, and partitions the range in place, accumulating both sides'
+// bounds as it goes, so each split reads the primitives twice. A child that would
+// cost more split than as a leaf becomes a leaf (a leaf's cost counted as its leaf
+// test goes: triangles in blocks of BvhBuildOptions::block, other shapes one by
+// one). Large subtrees are built on their own threads; nodes come from one array
+// through an atomic counter.
 #include <sys/mman.h>
 #include <algorithm>
 #include <atomic>
@@ -35,20 +35,20 @@ namespace rt {
 void NodeArray::allocate(size_t capacity) {
     data_.reset();
     size_ = 0;
-    const size_t bytes = capacity * sizeof(Bvh4Node);
+    const size_t bytes = capacity * sizeof(BvhNode);
     constexpr size_t kHuge = size_t(2) << 20;
     void* p = nullptr;
     if (bytes >= 4 * kHuge) {
         const size_t rounded = (bytes + kHuge - 1) / kHuge * kHuge;
         if (posix_memalign(&p, kHuge, rounded) != 0) throw std::bad_alloc();
         madvise(p, rounded, MADV_HUGEPAGE);  // a request: refused on some kernels, harmless
-    } else if (posix_memalign(&p, alignof(Bvh4Node), bytes) != 0) {
+    } else if (posix_memalign(&p, alignof(BvhNode), bytes) != 0) {
         throw std::bad_alloc();
     }
-    data_.reset(static_cast<Bvh4Node*>(p));
+    data_.reset(static_cast<BvhNode*>(p));
 }
 
-void NodeArray::Free::operator()(Bvh4Node* p) const { std::free(p); }
+void NodeArray::Free::operator()(BvhNode* p) const { std::free(p); }
 
 float round_down_to_float(Real x) {
     const float f = static_cast<float>(x);
@@ -155,18 +155,18 @@ struct Range {
     uint32_t count() const { return end - begin; }
 };
 
-void set_slot(Bvh4Node& n, int slot, const Box& b) {
+void set_slot(BvhNode& n, int slot, const Box& b) {
     for (int a = 0; a < 3; ++a) {
         n.lo[a][slot] = b.lo[a];
         n.hi[a][slot] = b.hi[a];
     }
 }
 
-// Four empty slots: boxes that no ray enters, no children.
-void clear_node(Bvh4Node& node) {
-    for (int i = 0; i < 4; ++i) {
+// Empty slots: boxes that no ray enters, no children.
+void clear_node(BvhNode& node) {
+    for (int i = 0; i < BvhNode::kWidth; ++i) {
         set_slot(node, i, Box());
-        node.child[i] = Bvh4Node::kEmpty;
+        node.child[i] = BvhNode::kEmpty;
         node.count[i] = 0;
     }
     for (uint8_t& p : node.pad) p = 0;
@@ -485,8 +485,9 @@ struct Builder {
         while (seen < level && !depth.compare_exchange_weak(seen, level)) {
         }
         // kids[i] is a leaf, or carries its own split in halves[i].
-        Range kids[4], halves[4][2];
-        bool is_split[4] = {};
+        constexpr int kWidth = BvhNode::kWidth;
+        Range kids[kWidth], halves[kWidth][2];
+        bool is_split[kWidth] = {};
         int n = 0;
         kids[n++] = l;
         kids[n++] = rr;
@@ -494,8 +495,8 @@ struct Builder {
             if (kids[i].leaf || is_split[i]) return;
             is_split[i] = split(kids[i], level + 1, halves[i][0], halves[i][1]);
         };
-        // Open the largest child that splits until there are four.
-        while (n < 4) {
+        // Open the largest child that splits until there are kWidth.
+        while (n < kWidth) {
             int best = -1;
             float best_area = -1;
             for (int i = 0; i < n; ++i) {
@@ -513,10 +514,10 @@ struct Builder {
         }
         for (int i = 0; i < n; ++i) evaluate(i);
 
-        Bvh4Node& node = nodes[index];
+        BvhNode& node = nodes[index];
         clear_node(node);
         // Take every child's node index before building any subtree.
-        uint32_t child_index[4] = {};
+        uint32_t child_index[kWidth] = {};
         for (int i = 0; i < n; ++i) {
             set_slot(node, i, kids[i].box);
             if (!is_split[i]) {
@@ -532,13 +533,13 @@ struct Builder {
         uint64_t total = 0;
         for (int i = 0; i < n; ++i)
             if (is_split[i]) total += kids[i].count();
-        bool to_helper[4] = {};
+        bool to_helper[kWidth] = {};
         HelperThread helper;
         if (total >= 2 * uint64_t(kParallelMin) && take_thread()) {
-            int order[4], m = 0;
+            int order[kWidth], m = 0;
             for (int i = 0; i < n; ++i)
                 if (is_split[i]) order[m++] = i;
-            for (int a = 1; a < m; ++a)  // largest first (at most four)
+            for (int a = 1; a < m; ++a)  // largest first (at most kWidth)
                 for (int b = a; b > 0 && kids[order[b]].count() > kids[order[b - 1]].count(); --b)
                     std::swap(order[b], order[b - 1]);
             uint64_t mine = 0, theirs = 0;
@@ -595,14 +596,14 @@ void Bvh::build(BuildBox* boxes, size_t count, const BvhBuildOptions& options) {
     for (uint32_t i = 0; i < n; ++i) boxes[i].id = i;
 
     // Every inner node has >= 2 children and every leaf >= 1 primitive, so a
-    // 4-wide tree over n primitives has fewer than n nodes; pages never written
+    // tree over n primitives has fewer than n nodes; pages never written
     // are never touched.
     nodes.allocate(n + 1);
     std::atomic<uint32_t> next{1};
     std::atomic<int> max_depth{1};
     std::atomic<int> spare{static_cast<int>(std::max(1u, std::thread::hardware_concurrency())) - 1};
     BvhBuildOptions opt = options;
-    opt.max_leaf = std::min<uint32_t>(std::max<uint32_t>(opt.max_leaf, 1), 1024);  // Bvh4Node::count is 16 bits
+    opt.max_leaf = std::min<uint32_t>(std::max<uint32_t>(opt.max_leaf, 1), 1024);  // BvhNode::count is 16 bits
     opt.bins = std::min(std::max(opt.bins, 2), kBins);
     opt.block = std::min<uint32_t>(std::max<uint32_t>(opt.block, 1), 16);
     Builder b{boxes, nodes, next, max_depth, spare, opt};
@@ -613,7 +614,7 @@ void Bvh::build(BuildBox* boxes, size_t count, const BvhBuildOptions& options) {
         b.build(0, l, r, 1);
     } else {
         // Few primitives that SAH keeps together: one node with one leaf slot.
-        Bvh4Node& node = nodes[0];
+        BvhNode& node = nodes[0];
         clear_node(node);
         set_slot(node, 0, root.box);
         node.child[0] = ~0;
@@ -621,8 +622,8 @@ void Bvh::build(BuildBox* boxes, size_t count, const BvhBuildOptions& options) {
     }
     nodes.set_size(next.load());
     depth = max_depth.load();
-    for (int i = 0; i < 4; ++i) {
-        if (nodes[0].child[i] == Bvh4Node::kEmpty) continue;
+    for (int i = 0; i < BvhNode::kWidth; ++i) {
+        if (nodes[0].child[i] == BvhNode::kEmpty) continue;
         for (int a = 0; a < 3; ++a)
             extent = std::max(extent, std::max(std::fabs(nodes[0].lo[a][i]), std::fabs(nodes[0].hi[a][i])));
     }

@@ -18,6 +18,7 @@
 namespace rt {
 namespace {
 
+static_assert(BvhNode::kWidth == 4, "the box tests take four children");
 constexpr int kStackSize = 256;  // 3 entries per level at most; the builder bounds depth to ~80
 constexpr Real kTieSlack = 1 + 64 * std::numeric_limits<Real>::epsilon();
 
@@ -54,7 +55,7 @@ inline BoxRay box_ray(const RayPre& p, const Bvh&, Real) {
 
 // Entry distances of the four children into `t` (HUGE_VAL for a miss), and a hit
 // mask; lane by lane (test4_simd, where there is one, gives the same bits).
-inline int test4_scalar(const Bvh4Node& n, const BoxRay& r, double tmin, double tmax, double t[4]) {
+inline int test4_scalar(const BvhNode& n, const BoxRay& r, double tmin, double tmax, double t[4]) {
     int mask = 0;
     for (int i = 0; i < 4; ++i) {
         double tn = tmin, tf = tmax * kSlabWiden;
@@ -76,7 +77,7 @@ inline int test4_scalar(const Bvh4Node& n, const BoxRay& r, double tmin, double 
 #if defined(__AVX__)
 #define RT_BOX_SIMD 1
 // test4_scalar, four lanes per AVX instruction.
-inline int test4_simd(const Bvh4Node& n, const BoxRay& r, double tmin, double tmax, double t[4]) {
+inline int test4_simd(const BvhNode& n, const BoxRay& r, double tmin, double tmax, double t[4]) {
     __m256d tnear = _mm256_set1_pd(tmin), tfar = _mm256_set1_pd(tmax * kSlabWiden);
     for (int a = 0; a < 3; ++a) {
         const float* nearp = r.near_is_hi[a] ? n.hi[a] : n.lo[a];
@@ -170,7 +171,7 @@ inline BoxRay box_ray(const RayPre& p, const Bvh& bvh, Real tmin) {
 
 // Entry distances of the four children into `t` (meaningful for hits only), and a
 // hit mask; lane by lane (test4_simd, where there is one, gives the same bits).
-inline int test4_scalar(const Bvh4Node& n, const BoxRay& r, float tmin, float tmax, float t[4]) {
+inline int test4_scalar(const BvhNode& n, const BoxRay& r, float tmin, float tmax, float t[4]) {
     int mask = 0;
     for (int i = 0; i < 4; ++i) {
         float tn = tmin, tf = tmax;
@@ -191,7 +192,7 @@ inline int test4_scalar(const Bvh4Node& n, const BoxRay& r, float tmin, float tm
 #if defined(__SSE2__)
 #define RT_BOX_SIMD 1
 // test4_scalar, four lanes per SSE instruction.
-inline int test4_simd(const Bvh4Node& n, const BoxRay& r, float tmin, float tmax, float t[4]) {
+inline int test4_simd(const BvhNode& n, const BoxRay& r, float tmin, float tmax, float t[4]) {
     __m128 tnear = _mm_set1_ps(tmin), tfar = _mm_set1_ps(tmax);
     for (int a = 0; a < 3; ++a) {
         const float* nearp = r.near_is_hi[a] ? n.hi[a] : n.lo[a];
@@ -211,7 +212,7 @@ inline int test4_simd(const Bvh4Node& n, const BoxRay& r, float tmin, float tmax
 #endif
 
 // The box test of the traversal: the SIMD kernel where the target has one.
-inline int test4(const Bvh4Node& n, const BoxRay& r, BoxReal tmin, BoxReal tmax, BoxReal t[4]) {
+inline int test4(const BvhNode& n, const BoxRay& r, BoxReal tmin, BoxReal tmax, BoxReal t[4]) {
 #if defined(RT_BOX_SIMD)
     return test4_simd(n, r, tmin, tmax, t);
 #else
@@ -408,7 +409,7 @@ inline bool test_copied_leaf(const Scene& s, const RayPre& p, const T* lv, uint3
 }
 
 // Calls hit(id, t, corners) (weights in w) for every primitive of the leaf at
-// prims[first] with Bvh4Node count `count` that the ray hits in (tmin, limit()), in
+// prims[first] with BvhNode count `count` that the ray hits in (tmin, limit()), in
 // leaf order; corners is the triangle's first float in the float leaf-order
 // vertices (Hit::corners, with the leaf's size as stride), or null. limit() is read
 // again for each test, and hit() returns true to stop early (test_leaf then
@@ -416,11 +417,11 @@ inline bool test_copied_leaf(const Scene& s, const RayPre& p, const T* lv, uint3
 template <bool kCull, bool kShadow, class Limit, class OnHit>
 inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint16_t count, Real tmin, const Limit& limit,
                       Real w[3], const OnHit& hit) {
-    const uint32_t size = Bvh4Node::leaf_size_of(count);
+    const uint32_t size = BvhNode::leaf_size_of(count);
     const uint32_t end = first + size;
     // Separate loops per source of vertices: one loop choosing the source per
     // block of four was 3-10% slower (knot_4m_glass render, medians of 5 and 7).
-    if (!(count & Bvh4Node::kIndexedLeaf)) {
+    if (!(count & BvhNode::kIndexedLeaf)) {
         if constexpr (std::is_same_v<Real, double>)
             if (const double* lv = s.accel.leaf_vertices.doubles())
                 return test_copied_leaf<kCull, kShadow>(s, p, lv, first, size, tmin, limit, w, hit);
@@ -455,7 +456,7 @@ inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint16_t 
 template <bool kCull, bool kShadow, class Limit, class OnHit>
 inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint16_t count, Real tmin, const Limit& limit,
                       Real w[3], const OnHit& hit) {
-    const uint32_t end = first + Bvh4Node::leaf_size_of(count);
+    const uint32_t end = first + BvhNode::leaf_size_of(count);
     for (uint32_t i = first; i < end; ++i) {
         const uint32_t id = s.accel.bvh.prims[i];
         Real t;
@@ -519,11 +520,11 @@ bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
                 test_leaf<kCull, false>(
                     s, p, first, e.count, tmin, [&] { return prim_limit; }, w,
                     [&](uint32_t id, Real t, const float* corners) {
-                        consider(id, t, corners, Bvh4Node::leaf_size_of(e.count));
+                        consider(id, t, corners, BvhNode::leaf_size_of(e.count));
                         return false;
                     });
             } else {
-                const Bvh4Node& n = s.accel.bvh.nodes[e.child];
+                const BvhNode& n = s.accel.bvh.nodes[e.child];
                 BoxReal t[4];
                 int mask = test4(n, br, BoxReal(tmin), box_limit(), t);
                 int order[4], k = 0;  // hit children, farthest first
@@ -582,7 +583,7 @@ double box_padding(const Bvh& bvh, const Ray& ray) {
 #endif
 }
 
-int test_node_boxes(const Bvh& bvh, const Bvh4Node& node, const Ray& ray, Real tmin, Real tmax, Real t[4],
+int test_node_boxes(const Bvh& bvh, const BvhNode& node, const Ray& ray, Real tmin, Real tmax, Real t[BvhNode::kWidth],
                     bool scalar) {
     const BoxRay br = box_ray(prepare(ray), bvh, tmin);
     BoxReal bt[4];
@@ -627,7 +628,7 @@ bool any_hit(const Scene& s, const Ray& ray, Real tmin, Real tmax, uint32_t* occ
                     }))
                 return true;
         } else {
-            const Bvh4Node& n = s.accel.bvh.nodes[child];
+            const BvhNode& n = s.accel.bvh.nodes[child];
             BoxReal t[4];
             int mask = test4(n, br, BoxReal(tmin), BoxReal(tmax), t);
             if (mask) {

@@ -182,7 +182,7 @@ bool copy_leaf(const Geometry& g, const std::vector<uint32_t>& prims, uint32_t f
 
 // Copies every leaf into `out` (LeafVertices::coordinates_for(prims) of T), two
 // threads half the nodes each for large trees, marking the leaves the copy cannot
-// stand in for Bvh4Node::kIndexedLeaf; returns the number of leaves it serves.
+// stand in for BvhNode::kIndexedLeaf; returns the number of leaves it serves.
 template <class T>
 size_t copy_leaves(const Geometry& g, Bvh& bvh, T* out) {
     const size_t end = LeafVertices::coordinates_for(bvh.prims.size());
@@ -190,14 +190,14 @@ size_t copy_leaves(const Geometry& g, Bvh& bvh, T* out) {
     auto copy = [&g, &bvh, out](size_t begin, size_t stop) {
         size_t served = 0;
         for (size_t k = begin; k < stop; ++k) {
-            Bvh4Node& node = bvh.nodes[k];
-            for (int i = 0; i < 4; ++i) {
-                if (!node.is_leaf(i) || node.child[i] == Bvh4Node::kEmpty) continue;
+            BvhNode& node = bvh.nodes[k];
+            for (int i = 0; i < BvhNode::kWidth; ++i) {
+                if (!node.is_leaf(i) || node.child[i] == BvhNode::kEmpty) continue;
                 const uint32_t first = ~static_cast<uint32_t>(node.child[i]);
                 if (copy_leaf(g, bvh.prims, first, node.leaf_size(i), out))
                     ++served;
                 else
-                    node.count[i] |= Bvh4Node::kIndexedLeaf;
+                    node.count[i] |= BvhNode::kIndexedLeaf;
             }
         }
         return served;

@@ -25,7 +25,7 @@ double cpu_seconds() {
     return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
 }
 
-double area(const rt::Bvh4Node& n, int i) {
+double area(const rt::BvhNode& n, int i) {
     const double x = double(n.hi[0][i]) - n.lo[0][i], y = double(n.hi[1][i]) - n.lo[1][i],
                  z = double(n.hi[2][i]) - n.lo[2][i];
     return x < 0 ? 0 : 2 * (x * y + y * z + z * x);
@@ -36,14 +36,14 @@ double area(const rt::Bvh4Node& n, int i) {
 double sah_cost(const rt::Bvh& bvh) {
     if (bvh.nodes.empty()) return 0;
     double root = 0, sum = 0;
-    const rt::Bvh4Node& r = bvh.nodes[0];
+    const rt::BvhNode& r = bvh.nodes[0];
     {
         float lo[3], hi[3];
         for (int a = 0; a < 3; ++a) {
             lo[a] = HUGE_VALF;
             hi[a] = -HUGE_VALF;
-            for (int i = 0; i < 4; ++i)
-                if (r.child[i] != rt::Bvh4Node::kEmpty) {
+            for (int i = 0; i < rt::BvhNode::kWidth; ++i)
+                if (r.child[i] != rt::BvhNode::kEmpty) {
                     lo[a] = std::min(lo[a], r.lo[a][i]);
                     hi[a] = std::max(hi[a], r.hi[a][i]);
                 }
@@ -51,9 +51,9 @@ double sah_cost(const rt::Bvh& bvh) {
         const double x = double(hi[0]) - lo[0], y = double(hi[1]) - lo[1], z = double(hi[2]) - lo[2];
         root = 2 * (x * y + y * z + z * x);
     }
-    for (const rt::Bvh4Node& n : bvh.nodes)
-        for (int i = 0; i < 4; ++i) {
-            if (n.child[i] == rt::Bvh4Node::kEmpty) continue;
+    for (const rt::BvhNode& n : bvh.nodes)
+        for (int i = 0; i < rt::BvhNode::kWidth; ++i) {
+            if (n.child[i] == rt::BvhNode::kEmpty) continue;
             sum += area(n, i) * (n.is_leaf(i) ? double(n.leaf_size(i)) : 1.0);
         }
     return root > 0 ? 1 + sum / root : 0;
