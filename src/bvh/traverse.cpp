@@ -1,7 +1,8 @@
 // BVH traversal: closest hit (near child first, fixed stack) and any hit.
-// Four child boxes are tested at once against float bounds rounded outwards: in
-// double for double rays (AVX when the compiler targets it, scalar otherwise), in
-// float, conservatively widened, for float rays (SSE, or scalar).
+// A node's eight child boxes are tested at once against float bounds rounded
+// outwards: in double for double rays (AVX-512 when the compiler targets it, else
+// two AVX halves, scalar otherwise), in float, conservatively widened, for float
+// rays (AVX, else two SSE halves, or scalar).
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
@@ -9,7 +10,13 @@
 #include <type_traits>
 
 #if defined(__SSE2__)
+// GCC 12's AVX-512 intrinsics start from _mm512_undefined_pd(), which
+// -Wmaybe-uninitialized reports wherever they are inlined (GCC bug 105593, fixed
+// in GCC 13 by the same pragmas inside the header).
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 #include <immintrin.h>
+#pragma GCC diagnostic pop
 #endif
 
 #include "rt/intersect.h"
@@ -18,8 +25,11 @@
 namespace rt {
 namespace {
 
-static_assert(BvhNode::kWidth == 4, "the box tests take four children");
-constexpr int kStackSize = 256;  // 3 entries per level at most; the builder bounds depth to ~80
+constexpr int kWidth = BvhNode::kWidth;
+// kWidth - 1 entries per level at most; the builder bounds the depth to 48 levels of
+// SAH splits followed by halvings (bvh_build.cpp, kSahDepthLimit): 81 levels for 2^32
+// primitives.
+constexpr int kStackSize = (kWidth - 1) * 81;
 constexpr Real kTieSlack = 1 + 64 * std::numeric_limits<Real>::epsilon();
 
 #if !defined(RT_REAL_FLOAT)
@@ -53,11 +63,11 @@ inline BoxRay box_ray(const RayPre& p, const Bvh&, Real) {
     return b;
 }
 
-// Entry distances of the four children into `t` (HUGE_VAL for a miss), and a hit
-// mask; lane by lane (test4_simd, where there is one, gives the same bits).
-inline int test4_scalar(const BvhNode& n, const BoxRay& r, double tmin, double tmax, double t[4]) {
+// Entry distances of the node's children into `t` (HUGE_VAL for a miss), and a hit
+// mask; lane by lane (test_simd, where there is one, gives the same bits).
+inline int test_scalar(const BvhNode& n, const BoxRay& r, double tmin, double tmax, double t[kWidth]) {
     int mask = 0;
-    for (int i = 0; i < 4; ++i) {
+    for (int i = 0; i < kWidth; ++i) {
         double tn = tmin, tf = tmax * kSlabWiden;
         for (int a = 0; a < 3; ++a) {
             const double nearv = r.near_is_hi[a] ? n.hi[a][i] : n.lo[a][i];
@@ -74,24 +84,47 @@ inline int test4_scalar(const BvhNode& n, const BoxRay& r, double tmin, double t
     return mask;
 }
 
-#if defined(__AVX__)
+#if defined(__AVX512F__)
 #define RT_BOX_SIMD 1
-// test4_scalar, four lanes per AVX instruction.
-inline int test4_simd(const BvhNode& n, const BoxRay& r, double tmin, double tmax, double t[4]) {
-    __m256d tnear = _mm256_set1_pd(tmin), tfar = _mm256_set1_pd(tmax * kSlabWiden);
+// test_scalar, eight lanes per AVX-512 instruction.
+inline int test_simd(const BvhNode& n, const BoxRay& r, double tmin, double tmax, double t[kWidth]) {
+    __m512d tnear = _mm512_set1_pd(tmin), tfar = _mm512_set1_pd(tmax * kSlabWiden);
     for (int a = 0; a < 3; ++a) {
         const float* nearp = r.near_is_hi[a] ? n.hi[a] : n.lo[a];
         const float* farp = r.near_is_hi[a] ? n.lo[a] : n.hi[a];
-        const __m256d o = _mm256_set1_pd(r.org[a]), inv = _mm256_set1_pd(r.inv[a]);
-        const __m256d t0 = _mm256_mul_pd(_mm256_sub_pd(_mm256_cvtps_pd(_mm_load_ps(nearp)), o), inv);
-        const __m256d t1 = _mm256_mul_pd(_mm256_sub_pd(_mm256_cvtps_pd(_mm_load_ps(farp)), o), inv);
+        const __m512d o = _mm512_set1_pd(r.org[a]), inv = _mm512_set1_pd(r.inv[a]);
+        const __m512d t0 = _mm512_mul_pd(_mm512_sub_pd(_mm512_cvtps_pd(_mm256_load_ps(nearp)), o), inv);
+        const __m512d t1 = _mm512_mul_pd(_mm512_sub_pd(_mm512_cvtps_pd(_mm256_load_ps(farp)), o), inv);
         // max/min return their second operand when the first is NaN.
-        tnear = _mm256_max_pd(t0, tnear);
-        tfar = _mm256_min_pd(_mm256_mul_pd(t1, _mm256_set1_pd(kSlabWiden)), tfar);
+        tnear = _mm512_max_pd(t0, tnear);
+        tfar = _mm512_min_pd(_mm512_mul_pd(t1, _mm512_set1_pd(kSlabWiden)), tfar);
     }
-    const __m256d hit = _mm256_cmp_pd(tnear, tfar, _CMP_LE_OQ);
-    _mm256_storeu_pd(t, _mm256_blendv_pd(_mm256_set1_pd(HUGE_VAL), tnear, hit));
-    return _mm256_movemask_pd(hit);
+    const __mmask8 hit = _mm512_cmp_pd_mask(tnear, tfar, _CMP_LE_OQ);
+    _mm512_storeu_pd(t, _mm512_mask_blend_pd(hit, _mm512_set1_pd(HUGE_VAL), tnear));
+    return hit;
+}
+#elif defined(__AVX__)
+#define RT_BOX_SIMD 1
+// test_scalar, four lanes per AVX instruction: the children in two halves.
+inline int test_simd(const BvhNode& n, const BoxRay& r, double tmin, double tmax, double t[kWidth]) {
+    int mask = 0;
+    for (int h = 0; h < kWidth; h += 4) {
+        __m256d tnear = _mm256_set1_pd(tmin), tfar = _mm256_set1_pd(tmax * kSlabWiden);
+        for (int a = 0; a < 3; ++a) {
+            const float* nearp = (r.near_is_hi[a] ? n.hi[a] : n.lo[a]) + h;
+            const float* farp = (r.near_is_hi[a] ? n.lo[a] : n.hi[a]) + h;
+            const __m256d o = _mm256_set1_pd(r.org[a]), inv = _mm256_set1_pd(r.inv[a]);
+            const __m256d t0 = _mm256_mul_pd(_mm256_sub_pd(_mm256_cvtps_pd(_mm_load_ps(nearp)), o), inv);
+            const __m256d t1 = _mm256_mul_pd(_mm256_sub_pd(_mm256_cvtps_pd(_mm_load_ps(farp)), o), inv);
+            // max/min return their second operand when the first is NaN.
+            tnear = _mm256_max_pd(t0, tnear);
+            tfar = _mm256_min_pd(_mm256_mul_pd(t1, _mm256_set1_pd(kSlabWiden)), tfar);
+        }
+        const __m256d hit = _mm256_cmp_pd(tnear, tfar, _CMP_LE_OQ);
+        _mm256_storeu_pd(t + h, _mm256_blendv_pd(_mm256_set1_pd(HUGE_VAL), tnear, hit));
+        mask |= _mm256_movemask_pd(hit) << h;
+    }
+    return mask;
 }
 #endif
 
@@ -143,7 +176,7 @@ struct BoxRay {
 
 // The box ray for rays with tmin >= 0 whose padded origin and scene bounds stay
 // within kBoxDomain; any other ray gets NaN inverses, which the max and min of
-// test4 skip: it enters every box (and empty slots, leaves of no primitives).
+// test_boxes skip: it enters every box (and empty slots, leaves of no primitives).
 inline BoxRay box_ray(const RayPre& p, const Bvh& bvh, Real tmin) {
     BoxRay b;
     // Grown by 1/32 so that the origin's rounding to nearest below (at most u of
@@ -169,11 +202,11 @@ inline BoxRay box_ray(const RayPre& p, const Bvh& bvh, Real tmin) {
     return b;
 }
 
-// Entry distances of the four children into `t` (meaningful for hits only), and a
-// hit mask; lane by lane (test4_simd, where there is one, gives the same bits).
-inline int test4_scalar(const BvhNode& n, const BoxRay& r, float tmin, float tmax, float t[4]) {
+// Entry distances of the node's children into `t` (meaningful for hits only), and a
+// hit mask; lane by lane (test_simd, where there is one, gives the same bits).
+inline int test_scalar(const BvhNode& n, const BoxRay& r, float tmin, float tmax, float t[kWidth]) {
     int mask = 0;
-    for (int i = 0; i < 4; ++i) {
+    for (int i = 0; i < kWidth; ++i) {
         float tn = tmin, tf = tmax;
         for (int a = 0; a < 3; ++a) {
             const float nearv = r.near_is_hi[a] ? n.hi[a][i] : n.lo[a][i];
@@ -189,34 +222,57 @@ inline int test4_scalar(const BvhNode& n, const BoxRay& r, float tmin, float tma
     return mask;
 }
 
-#if defined(__SSE2__)
+#if defined(__AVX__)
 #define RT_BOX_SIMD 1
-// test4_scalar, four lanes per SSE instruction.
-inline int test4_simd(const BvhNode& n, const BoxRay& r, float tmin, float tmax, float t[4]) {
-    __m128 tnear = _mm_set1_ps(tmin), tfar = _mm_set1_ps(tmax);
+// test_scalar, eight lanes per AVX instruction.
+inline int test_simd(const BvhNode& n, const BoxRay& r, float tmin, float tmax, float t[kWidth]) {
+    __m256 tnear = _mm256_set1_ps(tmin), tfar = _mm256_set1_ps(tmax);
     for (int a = 0; a < 3; ++a) {
         const float* nearp = r.near_is_hi[a] ? n.hi[a] : n.lo[a];
         const float* farp = r.near_is_hi[a] ? n.lo[a] : n.hi[a];
-        const __m128 t0 =
-            _mm_mul_ps(_mm_sub_ps(_mm_load_ps(nearp), _mm_set1_ps(r.org_near[a])), _mm_set1_ps(r.inv_near[a]));
-        const __m128 t1 =
-            _mm_mul_ps(_mm_sub_ps(_mm_load_ps(farp), _mm_set1_ps(r.org_far[a])), _mm_set1_ps(r.inv_far[a]));
+        const __m256 t0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(nearp), _mm256_set1_ps(r.org_near[a])),
+                                        _mm256_set1_ps(r.inv_near[a]));
+        const __m256 t1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(farp), _mm256_set1_ps(r.org_far[a])),
+                                        _mm256_set1_ps(r.inv_far[a]));
         // max/min return their second operand when the first is NaN.
-        tnear = _mm_max_ps(t0, tnear);
-        tfar = _mm_min_ps(t1, tfar);
+        tnear = _mm256_max_ps(t0, tnear);
+        tfar = _mm256_min_ps(t1, tfar);
     }
-    _mm_storeu_ps(t, tnear);
-    return _mm_movemask_ps(_mm_cmple_ps(tnear, tfar));
+    _mm256_storeu_ps(t, tnear);
+    return _mm256_movemask_ps(_mm256_cmp_ps(tnear, tfar, _CMP_LE_OQ));
+}
+#elif defined(__SSE2__)
+#define RT_BOX_SIMD 1
+// test_scalar, four lanes per SSE instruction: the children in two halves.
+inline int test_simd(const BvhNode& n, const BoxRay& r, float tmin, float tmax, float t[kWidth]) {
+    int mask = 0;
+    for (int h = 0; h < kWidth; h += 4) {
+        __m128 tnear = _mm_set1_ps(tmin), tfar = _mm_set1_ps(tmax);
+        for (int a = 0; a < 3; ++a) {
+            const float* nearp = (r.near_is_hi[a] ? n.hi[a] : n.lo[a]) + h;
+            const float* farp = (r.near_is_hi[a] ? n.lo[a] : n.hi[a]) + h;
+            const __m128 t0 =
+                _mm_mul_ps(_mm_sub_ps(_mm_load_ps(nearp), _mm_set1_ps(r.org_near[a])), _mm_set1_ps(r.inv_near[a]));
+            const __m128 t1 =
+                _mm_mul_ps(_mm_sub_ps(_mm_load_ps(farp), _mm_set1_ps(r.org_far[a])), _mm_set1_ps(r.inv_far[a]));
+            // max/min return their second operand when the first is NaN.
+            tnear = _mm_max_ps(t0, tnear);
+            tfar = _mm_min_ps(t1, tfar);
+        }
+        _mm_storeu_ps(t + h, tnear);
+        mask |= _mm_movemask_ps(_mm_cmple_ps(tnear, tfar)) << h;
+    }
+    return mask;
 }
 #endif
 #endif
 
 // The box test of the traversal: the SIMD kernel where the target has one.
-inline int test4(const BvhNode& n, const BoxRay& r, BoxReal tmin, BoxReal tmax, BoxReal t[4]) {
+inline int test_boxes(const BvhNode& n, const BoxRay& r, BoxReal tmin, BoxReal tmax, BoxReal t[kWidth]) {
 #if defined(RT_BOX_SIMD)
-    return test4_simd(n, r, tmin, tmax, t);
+    return test_simd(n, r, tmin, tmax, t);
 #else
-    return test4_scalar(n, r, tmin, tmax, t);
+    return test_scalar(n, r, tmin, tmax, t);
 #endif
 }
 
@@ -525,9 +581,9 @@ bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
                     });
             } else {
                 const BvhNode& n = s.accel.bvh.nodes[e.child];
-                BoxReal t[4];
-                int mask = test4(n, br, BoxReal(tmin), box_limit(), t);
-                int order[4], k = 0;  // hit children, farthest first
+                BoxReal t[kWidth];
+                int mask = test_boxes(n, br, BoxReal(tmin), box_limit(), t);
+                int order[kWidth], k = 0;  // hit children, farthest first
                 while (mask) {
                     const int i = __builtin_ctz(mask);
                     mask &= mask - 1;
@@ -583,13 +639,13 @@ double box_padding(const Bvh& bvh, const Ray& ray) {
 #endif
 }
 
-int test_node_boxes(const Bvh& bvh, const BvhNode& node, const Ray& ray, Real tmin, Real tmax, Real t[BvhNode::kWidth],
+int test_node_boxes(const Bvh& bvh, const BvhNode& node, const Ray& ray, Real tmin, Real tmax, Real t[kWidth],
                     bool scalar) {
     const BoxRay br = box_ray(prepare(ray), bvh, tmin);
-    BoxReal bt[4];
-    const int mask = scalar ? test4_scalar(node, br, BoxReal(tmin), BoxReal(tmax), bt)
-                            : test4(node, br, BoxReal(tmin), BoxReal(tmax), bt);
-    for (int i = 0; i < 4; ++i) t[i] = Real(bt[i]);
+    BoxReal bt[kWidth];
+    const int mask = scalar ? test_scalar(node, br, BoxReal(tmin), BoxReal(tmax), bt)
+                            : test_boxes(node, br, BoxReal(tmin), BoxReal(tmax), bt);
+    for (int i = 0; i < kWidth; ++i) t[i] = Real(bt[i]);
     return mask;
 }
 
@@ -629,8 +685,8 @@ bool any_hit(const Scene& s, const Ray& ray, Real tmin, Real tmax, uint32_t* occ
                 return true;
         } else {
             const BvhNode& n = s.accel.bvh.nodes[child];
-            BoxReal t[4];
-            int mask = test4(n, br, BoxReal(tmin), BoxReal(tmax), t);
+            BoxReal t[kWidth];
+            int mask = test_boxes(n, br, BoxReal(tmin), BoxReal(tmax), t);
             if (mask) {
                 for (;;) {
                     const int i = __builtin_ctz(mask);
