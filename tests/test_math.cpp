@@ -5,7 +5,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <limits>
+#include <random>
+#include <vector>
 
 #include "rt/image.h"
 #include "rt/math.h"
@@ -116,6 +120,36 @@ TEST(MathVec3, LengthAndNormalize) {
     expect_vec_eq(rt::normalize(Vec3{0, 0, -5}), 0, 0, -1);
     // (1,1,1)/sqrt(3): each component 0.5773502691896258
     expect_vec_near(rt::normalize(Vec3{2, 2, 2}), 0.5773502691896258, 0.5773502691896258, 0.5773502691896258, kTol);
+}
+
+// max_num and min_num stand in for std::fmax and std::fmin (without their libm
+// calls): the same values on ordinary numbers, zeros, subnormals,
+// the largest finite, infinities and NaN (fmax's rule: NaN loses), and on random bits.
+TEST(MathScalar, MaxNumMinNumAgreeWithLibm) {
+    const Real inf = std::numeric_limits<Real>::infinity(), nan = std::numeric_limits<Real>::quiet_NaN();
+    const Real big = std::numeric_limits<Real>::max(), tiny = std::numeric_limits<Real>::denorm_min();
+    std::vector<Real> xs = {0,   -0.0f, 1,   -1,   Real(0.1), tiny, -tiny, std::numeric_limits<Real>::min(),
+                            big, -big,  inf, -inf, nan};
+    std::mt19937_64 rng(795);
+    for (int i = 0; i < 2000; ++i) {
+        Real x;
+        do {
+            const uint64_t b = rng();
+            std::memcpy(&x, &b, sizeof x);
+        } while (std::isnan(x));
+        xs.push_back(x);
+    }
+    auto same = [](Real a, Real b) {
+        return (std::isnan(a) && std::isnan(b)) || (a == b && std::signbit(a) == std::signbit(b));
+    };
+    for (Real a : xs) {
+        for (Real b : {Real(0), Real(1), -big, inf, nan, xs[xs.size() / 2]}) {
+            // Equal zeros of opposite signs may give either zero (the contract).
+            if (a == 0 && b == 0) continue;
+            EXPECT_TRUE(same(rt::max_num(a, b), std::fmax(a, b))) << "max_num(" << a << ", " << b << ")";
+            EXPECT_TRUE(same(rt::min_num(a, b), std::fmin(a, b))) << "min_num(" << a << ", " << b << ")";
+        }
+    }
 }
 
 TEST(MathVec3, MinMax) {
