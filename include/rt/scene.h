@@ -73,12 +73,12 @@ struct TriangleRun {
     bool smooth;        // interpolate vertex normals (else flat)
 };
 
-// The last of `items` (ascending by `first`) whose `first` is at most i, or null
-// when there is none. Items left empty share their `first` with the next one,
+// The last of `items` (ascending by `first`) whose `first` is at most `index`, or
+// null when there is none. Items left empty share their `first` with the next one,
 // which is the one found.
 template <class T>
-const T* last_starting_at(const std::vector<T>& items, uint32_t first_of_i, uint32_t T::*first) {
-    auto it = std::upper_bound(items.begin(), items.end(), first_of_i,
+const T* last_starting_at(const std::vector<T>& items, uint32_t index, uint32_t T::*first) {
+    auto it = std::upper_bound(items.begin(), items.end(), index,
                                [first](uint32_t i, const T& item) { return i < item.*first; });
     return it == items.begin() ? nullptr : &*--it;
 }
