@@ -19,14 +19,20 @@ bench: raytracer $(BENCH_GEN)
 bench-quick: raytracer $(BENCH_GEN)
 	python3 tests/bench/bench.py --raytracer ./raytracer --gen-mesh $(BENCH_GEN) --quick $(BENCH_ARGS)
 
-# BVH build only: median build time and the tree's SAH cost (tests/bench/bvh_bench.cpp).
+# BVH build only: median build time, the tree's SAH cost and how full its nodes are
+# (tests/bench/bvh_bench.cpp), for the double tree and the float one.
 #   make bench-bvh BVH_SCENE=build/bench/scenes/knot_4m_plain.json
 BVH_BENCH := build/bench/bvh_bench
+BVH_BENCH_FLOAT := build/bench/bvh_bench_float
 BVH_SCENE ?= build/bench/scenes/knot_4m_plain.json
 $(BVH_BENCH): tests/bench/bvh_bench.cpp $(BUILD)/librt.a
 	@mkdir -p $(dir $@)
 	$(CXX) $(CPPFLAGS) $(CXXFLAGS) -o $@ $< $(BUILD)/librt.a $(LDLIBS)
+$(BVH_BENCH_FLOAT): tests/bench/bvh_bench.cpp $(BUILD)/librt_float.a $(BUILD)/librt.a
+	@mkdir -p $(dir $@)
+	$(CXX) $(CPPFLAGS) $(FLOAT_CPPFLAGS) $(CXXFLAGS) -o $@ $< $(BUILD)/librt_float.a $(BUILD)/librt.a $(LDLIBS)
 
 .PHONY: bench-bvh
-bench-bvh: $(BVH_BENCH)
+bench-bvh: $(BVH_BENCH) $(BVH_BENCH_FLOAT)
 	$(BVH_BENCH) --runs 5 $(BVH_SCENE)
+	$(BVH_BENCH_FLOAT) --runs 5 $(BVH_SCENE)

@@ -112,11 +112,15 @@ public:
     void clear() {
         data_.reset();
         size_ = 0;
+        bytes_ = 0;
     }
     // Storage for `capacity` nodes, uninitialised; then set_size(n) with n <= capacity.
     // Arrays of 8 MiB or more ask for transparent huge pages (bvh_build.cpp).
     void allocate(size_t capacity);
     void set_size(size_t n) { size_ = n; }
+    // Gives the whole pages past size() back to the system (after nodes were
+    // removed); the capacity stays, and pages read again read as zeros.
+    void release_unused();
 
 private:
     struct Free {
@@ -124,6 +128,7 @@ private:
     };
     std::unique_ptr<BvhNode[], Free> data_;
     size_t size_ = 0;
+    size_t bytes_ = 0;  // allocated
 };
 
 // Primitives a leaf tests at once (traverse.cpp): one AVX2 register of Real
@@ -146,6 +151,7 @@ struct BvhBuildOptions {
     uint32_t block = kLeafBlock;  // SAH counts a leaf's triangles in blocks of this many (1..16), others one by one
     int bins = 16;                // SAH bins per axis for large ranges (2..16; small ranges use fewer)
     bool sah = true;              // false: object-median splits only (fastest build, slower rays)
+    bool collapse = true;         // false: keep the top-down tree's sparse bottom nodes (bvh_build.cpp)
     // Leaf-order vertices (scene.h, LeafVertices) in double for scenes of up to
     // this many primitives (72 bytes a triangle, at most 9 MiB: a copy that stays
     // in cache), in float above (docs/speed.md); 0: never double. Double builds

@@ -76,6 +76,8 @@ int raytracer_cli(int argc, char** argv) {
     cli::add_whole(app, "--bvh-bins", "N", "SAH bins per axis (2..16, default 16)", o.bvh.bins, 2, 16);
     cli::add_choice(app, "--bvh-split", "sah (default) or median (object-median splits, no SAH)", o.bvh.sah,
                     {{"sah", true}, {"median", false}});
+    cli::add_choice(app, "--bvh-collapse", "yes (default) or no (keep the top-down tree's sparse bottom nodes)",
+                    o.bvh.collapse, {{"yes", true}, {"no", false}});
     cli::add_number(app, "--bvh-cost", "F",
                     "SAH cost of a node visit relative to a leaf block test (0.1..100, default 1)",
                     o.bvh.traversal_cost, "a number from 0.1 to 100", [](double f) { return f >= 0.1 && f <= 100; });

@@ -110,7 +110,8 @@ std::string stats_json(const std::vector<ImageRecord>& images, const std::string
                     {"bins", r.bvh.bins},
                     {"traversal_cost", r.bvh.traversal_cost},
                     {"block", r.bvh.block},
-                    {"split", r.bvh.sah ? "sah" : "median"}};
+                    {"split", r.bvh.sah ? "sah" : "median"},
+                    {"collapse", r.bvh.collapse}};
         j["peak_rss_bytes"] = r.peak_rss;
         list.push_back(std::move(j));
     }

@@ -9,12 +9,14 @@
 // one). Large subtrees are built on their own threads; nodes come from one array
 // through an atomic counter.
 #include <sys/mman.h>
+#include <unistd.h>
 #include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <new>
 #include <thread>
+#include <vector>
 
 #if defined(__AVX__)
 #include <immintrin.h>
@@ -46,6 +48,16 @@ void NodeArray::allocate(size_t capacity) {
         throw std::bad_alloc();
     }
     data_.reset(static_cast<BvhNode*>(p));
+    bytes_ = bytes;
+}
+
+void NodeArray::release_unused() {
+    const uintptr_t page = static_cast<uintptr_t>(sysconf(_SC_PAGESIZE));
+    const uintptr_t start = reinterpret_cast<uintptr_t>(data_.get());
+    // Only pages wholly inside the allocation: a partial page may hold the allocator's data.
+    const uintptr_t from = (start + size_ * sizeof(BvhNode) + page - 1) / page * page;
+    const uintptr_t to = (start + bytes_) / page * page;
+    if (to > from) madvise(reinterpret_cast<void*>(from), to - from, MADV_DONTNEED);
 }
 
 void NodeArray::Free::operator()(BvhNode* p) const { std::free(p); }
@@ -172,11 +184,169 @@ void clear_node(BvhNode& node) {
     for (uint8_t& p : node.pad) p = 0;
 }
 
+// Collapsing: fewer, fuller nodes. Splitting top-down leaves most nodes at the
+// bottom with a few leaves each (a range just over max_leaf becomes a node of two
+// leaves): at 16M triangles nearly half the child slots were empty (docs/speed.md).
+// So once a node's subtrees are built, the node
+//  1. merges two child nodes that hold only leaves into one when their leaves fit
+//     one node and the box around both has less surface area than the two boxes
+//     (SAH: fewer expected node visits), the pair with the largest saving first;
+//  2. takes in a child node whose slots fit in its free ones (one node visit
+//     fewer and no box test more: a node tests all its slots at once), the
+//     largest box first.
+// Leaves, their boxes and primitives stay as built, and hits do not depend on the
+// tree's shape (closest_hit breaks ties by primitive id). Removed nodes are marked
+// (first slot empty) and squeezed out at the end (finish_nodes).
+
+// A node's shape, all its parent's collapse needs to rule both steps out: its
+// slots in use, plus kOnlyLeaves when every one is a leaf.
+constexpr uint8_t kOnlyLeaves = 0x80;
+uint8_t shape_of(int slots, bool only_leaves) { return static_cast<uint8_t>(slots | (only_leaves ? kOnlyLeaves : 0)); }
+uint8_t shape_of(const BvhNode& n) {
+    int k = 0;
+    bool leaves = true;
+    for (; k < BvhNode::kWidth && n.child[k] != BvhNode::kEmpty; ++k) leaves = leaves && n.child[k] < 0;
+    return shape_of(k, leaves);
+}
+
+// A child slot as the collapse handles it.
+struct Slot {
+    Box box;
+    float area = 0;
+    int32_t child = BvhNode::kEmpty;
+    uint16_t count = 0;
+    uint8_t shape = 0;  // a child node's shape_of
+    bool only_leaves() const { return child >= 0 && (shape & kOnlyLeaves) != 0; }
+    int slots() const { return shape & ~kOnlyLeaves; }
+};
+
+// The slots of `n` in use; their child nodes' shapes are `shapes` when given,
+// else read from the child nodes.
+int load_slots(const NodeArray& nodes, const BvhNode& n, Slot s[BvhNode::kWidth], const uint8_t* shapes) {
+    int k = 0;
+    for (; k < BvhNode::kWidth && n.child[k] != BvhNode::kEmpty; ++k) {
+        for (int a = 0; a < 3; ++a) {
+            s[k].box.lo[a] = n.lo[a][k];
+            s[k].box.hi[a] = n.hi[a][k];
+        }
+        s[k].area = s[k].box.area();
+        s[k].child = n.child[k];
+        s[k].count = n.count[k];
+        s[k].shape = n.child[k] < 0 ? 0 : shapes ? shapes[k] : shape_of(nodes[n.child[k]]);
+    }
+    return k;
+}
+
+void store_slots(BvhNode& n, const Slot s[BvhNode::kWidth], int k) {
+    clear_node(n);
+    for (int i = 0; i < k; ++i) {
+        set_slot(n, i, s[i].box);
+        n.child[i] = s[i].child;
+        n.count[i] = s[i].count;
+    }
+}
+
+void mark_removed(BvhNode& n) { n.child[0] = BvhNode::kEmpty; }
+bool is_removed(const BvhNode& n) { return n.child[0] == BvhNode::kEmpty; }
+
+// Steps 1 and 2 for `node`, whose k slots are in use and whose subtrees are built
+// and collapsed (`shapes`: the child nodes' shape_of, 0 for a leaf). Returns the
+// node's shape_of.
+uint8_t collapse_node(NodeArray& nodes, BvhNode& node, int k, const uint8_t shapes[BvhNode::kWidth]) {
+    constexpr int kWidth = BvhNode::kWidth;
+    {  // Most nodes hold only leaves: rule both steps out without reading a node.
+        int smallest = kWidth + 1, smallest_leafy = kWidth + 1;
+        bool pair = false, leaves = true;
+        for (int i = 0; i < k; ++i) {
+            if (shapes[i] == 0) continue;  // a leaf
+            leaves = false;
+            const int slots = shapes[i] & ~kOnlyLeaves;
+            smallest = std::min(smallest, slots);
+            if (!(shapes[i] & kOnlyLeaves)) continue;
+            pair = pair || smallest_leafy + slots <= kWidth;
+            smallest_leafy = std::min(smallest_leafy, slots);
+        }
+        if (!pair && k - 1 + smallest > kWidth) return shape_of(k, leaves);
+    }
+    Slot s[kWidth];
+    load_slots(nodes, node, s, shapes);
+    for (;;) {  // 1. merge
+        int best_a = -1, best_b = -1;
+        float best = 0;
+        Box best_box;
+        for (int a = 0; a < k; ++a) {
+            if (!s[a].only_leaves()) continue;
+            for (int b = a + 1; b < k; ++b) {
+                if (!s[b].only_leaves() || s[a].slots() + s[b].slots() > kWidth) continue;
+                Box both = s[a].box;
+                both.extend(s[b].box);
+                const float saving = s[a].area + s[b].area - both.area();
+                if (saving > best) best = saving, best_a = a, best_b = b, best_box = both;
+            }
+        }
+        if (best_a < 0) break;
+        Slot into[kWidth], from[kWidth];
+        const int ka = load_slots(nodes, nodes[s[best_a].child], into, nullptr);
+        const int kb = load_slots(nodes, nodes[s[best_b].child], from, nullptr);
+        std::copy(from, from + kb, into + ka);
+        store_slots(nodes[s[best_a].child], into, ka + kb);
+        mark_removed(nodes[s[best_b].child]);
+        s[best_a].box = best_box;
+        s[best_a].area = best_box.area();
+        s[best_a].shape = shape_of(ka + kb, true);
+        std::copy(s + best_b + 1, s + k, s + best_b);
+        --k;
+    }
+    for (;;) {  // 2. take in
+        int best = -1;
+        for (int i = 0; i < k; ++i)
+            if (s[i].child >= 0 && k - 1 + s[i].slots() <= kWidth && (best < 0 || s[i].area > s[best].area)) best = i;
+        if (best < 0) break;
+        BvhNode& c = nodes[s[best].child];
+        Slot t[kWidth];
+        const int kc = load_slots(nodes, c, t, nullptr);
+        mark_removed(c);
+        s[best] = t[0];
+        std::copy(t + 1, t + kc, s + k);
+        k += kc - 1;
+    }
+    store_slots(node, s, k);
+    return shape_of(node);
+}
+
+// After the build: squeezes out removed nodes (new indices keep the order, and a
+// node's children come after it, so a node only moves down and its children,
+// further on, move after it) and gives back the freed pages. Returns the depth.
+int finish_nodes(NodeArray& nodes) {
+    const size_t n = nodes.size();
+    std::vector<uint32_t> index(n);
+    uint32_t kept = 0;
+    for (size_t i = 0; i < n; ++i) index[i] = is_removed(nodes[i]) ? ~0u : kept++;
+    std::vector<uint8_t> level(kept, 0);
+    level[0] = 1;
+    int depth = 1;
+    for (size_t i = 0; i < n; ++i) {
+        if (index[i] == ~0u) continue;
+        BvhNode& node = nodes[i];
+        const uint32_t to = index[i];
+        depth = std::max(depth, int(level[to]));
+        for (int c = 0; c < BvhNode::kWidth; ++c)
+            if (node.child[c] >= 0) {
+                node.child[c] = static_cast<int32_t>(index[node.child[c]]);
+                level[node.child[c]] = static_cast<uint8_t>(level[to] + 1);
+            }
+        if (to != i) nodes[to] = node;
+    }
+    nodes.set_size(kept);
+    nodes.release_unused();
+    return depth;
+}
+
 struct Builder {
     BuildBox* refs;
+    uint32_t* prims;  // Bvh::prims: each leaf writes its primitives' ids when it is made
     NodeArray& nodes;
     std::atomic<uint32_t>& next_node;
-    std::atomic<int>& depth;
     std::atomic<int>& spare_threads;
     BvhBuildOptions opt;
 
@@ -466,10 +636,20 @@ struct Builder {
         return true;
     }
 
-    void bounds(Range& r) const {
+    // Slot i of `node` becomes the leaf of r's primitives.
+    void make_leaf(BvhNode& node, int i, const Range& r) const {
+        node.child[i] = ~static_cast<int32_t>(r.begin);
+        node.count[i] = static_cast<uint16_t>(r.count());
+        for (uint32_t j = r.begin; j < r.end; ++j) prims[j] = refs[j].id;
+    }
+
+    // r's bounds; with `number`, also gives each box its id, its index (the root
+    // range, before any sorting: one pass over the boxes instead of two).
+    void bounds(Range& r, bool number = false) const {
         Box box, cbox;
         r.alone = 0;
         for (uint32_t i = r.begin; i < r.end; ++i) {
+            if (number) refs[i].id = i;
             r.alone += refs[i].alone;
             box.extend(refs[i].lo, refs[i].hi);
             const float c[3] = {centre2(refs[i], 0), centre2(refs[i], 1), centre2(refs[i], 2)};
@@ -479,11 +659,9 @@ struct Builder {
         r.cbox = cbox;
     }
 
-    // Builds the node at `index` from a range already split into `l` and `rr`.
-    void build(uint32_t index, Range l, Range rr, int level) {
-        int seen = depth.load(std::memory_order_relaxed);
-        while (seen < level && !depth.compare_exchange_weak(seen, level)) {
-        }
+    // Builds the node at `index` from a range already split into `l` and `rr`;
+    // returns its shape_of.
+    uint8_t build(uint32_t index, Range l, Range rr, int level) {
         // kids[i] is a leaf, or carries its own split in halves[i].
         constexpr int kWidth = BvhNode::kWidth;
         Range kids[kWidth], halves[kWidth][2];
@@ -521,8 +699,7 @@ struct Builder {
         for (int i = 0; i < n; ++i) {
             set_slot(node, i, kids[i].box);
             if (!is_split[i]) {
-                node.child[i] = ~static_cast<int32_t>(kids[i].begin);
-                node.count[i] = static_cast<uint16_t>(kids[i].count());
+                make_leaf(node, i, kids[i]);
             } else {
                 child_index[i] = next_node.fetch_add(1, std::memory_order_relaxed);
                 node.child[i] = static_cast<int32_t>(child_index[i]);
@@ -534,6 +711,7 @@ struct Builder {
         for (int i = 0; i < n; ++i)
             if (is_split[i]) total += kids[i].count();
         bool to_helper[kWidth] = {};
+        uint8_t shapes[kWidth] = {};  // of the child nodes
         HelperThread helper;
         if (total >= 2 * uint64_t(kParallelMin) && take_thread()) {
             int order[kWidth], m = 0;
@@ -554,13 +732,15 @@ struct Builder {
             }
             helper = HelperThread([&, level] {
                 for (int i = 0; i < n; ++i)
-                    if (to_helper[i]) build(child_index[i], halves[i][0], halves[i][1], level + 1);
+                    if (to_helper[i]) shapes[i] = build(child_index[i], halves[i][0], halves[i][1], level + 1);
                 spare_threads.fetch_add(1);
             });
         }
         for (int i = 0; i < n; ++i)
-            if (is_split[i] && !to_helper[i]) build(child_index[i], halves[i][0], halves[i][1], level + 1);
+            if (is_split[i] && !to_helper[i]) shapes[i] = build(child_index[i], halves[i][0], halves[i][1], level + 1);
         helper.join();
+        if (opt.collapse) return collapse_node(nodes, node, n, shapes);
+        return shape_of(n, std::none_of(is_split, is_split + n, [](bool b) { return b; }));
     }
 
     // Runs a on a spare thread, when there is one, beside b on this thread;
@@ -593,22 +773,21 @@ void Bvh::build(BuildBox* boxes, size_t count, const BvhBuildOptions& options) {
     extent = 0;
     if (count == 0) return;
     const uint32_t n = static_cast<uint32_t>(count);
-    for (uint32_t i = 0; i < n; ++i) boxes[i].id = i;
 
     // Every inner node has >= 2 children and every leaf >= 1 primitive, so a
     // tree over n primitives has fewer than n nodes; pages never written
     // are never touched.
     nodes.allocate(n + 1);
     std::atomic<uint32_t> next{1};
-    std::atomic<int> max_depth{1};
     std::atomic<int> spare{static_cast<int>(std::max(1u, std::thread::hardware_concurrency())) - 1};
     BvhBuildOptions opt = options;
     opt.max_leaf = std::min<uint32_t>(std::max<uint32_t>(opt.max_leaf, 1), 1024);  // BvhNode::count is 16 bits
     opt.bins = std::min(std::max(opt.bins, 2), kBins);
     opt.block = std::min<uint32_t>(std::max<uint32_t>(opt.block, 1), 16);
-    Builder b{boxes, nodes, next, max_depth, spare, opt};
+    prims.resize(n);
+    Builder b{boxes, prims.data(), nodes, next, spare, opt};
     Range root{0, n, {}, {}, false};
-    b.bounds(root);
+    b.bounds(root, true);
     Range l, r;
     if (b.split(root, 1, l, r)) {
         b.build(0, l, r, 1);
@@ -617,19 +796,15 @@ void Bvh::build(BuildBox* boxes, size_t count, const BvhBuildOptions& options) {
         BvhNode& node = nodes[0];
         clear_node(node);
         set_slot(node, 0, root.box);
-        node.child[0] = ~0;
-        node.count[0] = static_cast<uint16_t>(n);
+        b.make_leaf(node, 0, root);
     }
     nodes.set_size(next.load());
-    depth = max_depth.load();
+    depth = finish_nodes(nodes);
     for (int i = 0; i < BvhNode::kWidth; ++i) {
         if (nodes[0].child[i] == BvhNode::kEmpty) continue;
         for (int a = 0; a < 3; ++a)
             extent = std::max(extent, std::max(std::fabs(nodes[0].lo[a][i]), std::fabs(nodes[0].hi[a][i])));
     }
-
-    prims.resize(n);
-    for (uint32_t i = 0; i < n; ++i) prims[i] = boxes[i].id;
 }
 
 }  // namespace rt

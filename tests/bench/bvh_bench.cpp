@@ -4,7 +4,7 @@
 // builder optimises (traversal steps cost 1, primitive tests 1, relative to the
 // root box's area), so a faster build can be checked not to have bought its
 // speed with a worse tree.
-//   build/bench/bvh_bench [--runs N] [--bins N] [--leaf N] scene.json
+//   build/bench/bvh_bench [--runs N] [--bins N] [--leaf N] [--no-collapse] scene.json
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -59,6 +59,24 @@ double sah_cost(const rt::Bvh& bvh) {
     return root > 0 ? 1 + sum / root : 0;
 }
 
+// Child slots: inner, leaf, empty; and primitives in leaves.
+struct Fill {
+    size_t inner = 0, leaves = 0, empty = 0, prims = 0;
+};
+Fill fill_of(const rt::Bvh& bvh) {
+    Fill f;
+    for (const rt::BvhNode& n : bvh.nodes)
+        for (int i = 0; i < rt::BvhNode::kWidth; ++i) {
+            if (n.child[i] == rt::BvhNode::kEmpty)
+                ++f.empty;
+            else if (n.is_leaf(i))
+                ++f.leaves, f.prims += n.leaf_size(i);
+            else
+                ++f.inner;
+        }
+    return f;
+}
+
 double median(std::vector<double> v) {
     std::sort(v.begin(), v.end());
     return v[v.size() / 2];
@@ -78,11 +96,13 @@ int main(int argc, char** argv) {
             opt.bins = std::atoi(argv[++i]);
         else if (a == "--leaf" && i + 1 < argc)
             opt.max_leaf = uint32_t(std::atoi(argv[++i]));
+        else if (a == "--no-collapse")
+            opt.collapse = false;
         else
             path = a;
     }
     if (path.empty()) {
-        std::fprintf(stderr, "usage: bvh_bench [--runs N] [--bins N] [--leaf N] scene.json\n");
+        std::fprintf(stderr, "usage: bvh_bench [--runs N] [--bins N] [--leaf N] [--no-collapse] scene.json\n");
         return 2;
     }
     try {
@@ -90,6 +110,7 @@ int main(int argc, char** argv) {
         std::vector<double> wall, cpu;
         double cost = 0;
         size_t nodes = 0;
+        Fill fill;
         std::vector<double> box_wall;
         for (int r = 0; r < runs; ++r) {
             const auto b0 = std::chrono::steady_clock::now();
@@ -103,6 +124,7 @@ int main(int argc, char** argv) {
             cpu.push_back(cpu_seconds() - c0);
             cost = sah_cost(bvh);
             nodes = bvh.nodes.size();
+            fill = fill_of(bvh);
         }
         std::printf(
             "%s: %zu primitives, medians of %d: boxes %.3f s, build %.3f s wall, %.3f s cpu (first %.3f s); "
@@ -110,6 +132,10 @@ int main(int argc, char** argv) {
             path.c_str(), s.geometry.triangles.size() + s.geometry.spheres.size(), runs, median(box_wall), median(wall),
             median(cpu), wall[0], nodes, cost, *std::min_element(wall.begin(), wall.end()),
             *std::min_element(cpu.begin(), cpu.end()));
+        const size_t slots = nodes * rt::BvhNode::kWidth;
+        std::printf("child slots: %zu inner, %zu leaves (%.2f primitives each), %zu empty (%.1f%%)\n", fill.inner,
+                    fill.leaves, fill.leaves ? double(fill.prims) / double(fill.leaves) : 0.0, fill.empty,
+                    slots ? 100.0 * double(fill.empty) / double(slots) : 0.0);
     } catch (const std::exception& e) {
         std::fprintf(stderr, "%s\n", e.what());
         return 1;
