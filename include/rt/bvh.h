@@ -1,5 +1,6 @@
 // An 8-wide BVH in one flat array of 256-byte nodes, built directly by binned
-// SAH (bvh_build.cpp): one SIMD box test serves eight children. Rays through large
+// SAH and then collapsed into fuller nodes (bvh_build.cpp): one SIMD box test
+// serves eight children. Rays through large
 // meshes mostly wait for node loads; a wider node means fewer levels, so fewer
 // dependent loads per ray, and the eight float boxes fill one AVX register as
 // Embree's 8-wide nodes do (docs/speed.md). Bounds are stored as float,

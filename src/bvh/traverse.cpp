@@ -32,6 +32,114 @@ constexpr int kWidth = BvhNode::kWidth;
 constexpr int kStackSize = (kWidth - 1) * 81;
 constexpr Real kTieSlack = 1 + 64 * std::numeric_limits<Real>::epsilon();
 
+// Lane operations. The box test and the leaf test are each written once, over a
+// type O whose O::V holds O::kLanes values of one precision; every width below
+// does the same IEEE operation in each lane, so every width gives the same bits.
+// OneLane is plain C++ (the reference and the fallback); the others are one
+// register each. max and min return the second operand when either is NaN, as
+// the SIMD instructions do. Loads read float bounds or Real coordinates; load and
+// store take unaligned addresses except F32x4's load (node bounds, 16-byte aligned).
+template <class T>
+struct OneLane {
+    using V = T;
+    using Mask = bool;
+    static constexpr int kLanes = 1;
+    static V set1(T x) { return x; }
+    static V load(const float* p) { return T(*p); }
+    static void store(T* p, V x) { *p = x; }
+    static V sub(V a, V b) { return a - b; }
+    static V mul(V a, V b) { return a * b; }
+    static V max(V a, V b) { return a > b ? a : b; }
+    static V min(V a, V b) { return a < b ? a : b; }
+    static Mask le(V a, V b) { return a <= b; }
+    static V select(Mask m, V a, V b) { return m ? a : b; }
+    static int bits(Mask m) { return m ? 1 : 0; }
+};
+
+#if defined(__SSE2__)
+struct F32x4 {
+    using V = __m128;
+    using Mask = __m128;
+    static constexpr int kLanes = 4;
+    static V set1(float x) { return _mm_set1_ps(x); }
+    static V load(const float* p) { return _mm_load_ps(p); }
+    static void store(float* p, V x) { _mm_storeu_ps(p, x); }
+    static V sub(V a, V b) { return _mm_sub_ps(a, b); }
+    static V mul(V a, V b) { return _mm_mul_ps(a, b); }
+    static V max(V a, V b) { return _mm_max_ps(a, b); }
+    static V min(V a, V b) { return _mm_min_ps(a, b); }
+    static Mask le(V a, V b) { return _mm_cmple_ps(a, b); }
+    static int bits(Mask m) { return _mm_movemask_ps(m); }
+};
+#endif
+
+#if defined(__AVX__)
+struct F32x8 {
+    using V = __m256;
+    using Mask = __m256;
+    static constexpr int kLanes = 8;
+    static V set1(float x) { return _mm256_set1_ps(x); }
+    static V load(const float* p) { return _mm256_loadu_ps(p); }
+    static void store(float* p, V x) { _mm256_storeu_ps(p, x); }
+    static V sub(V a, V b) { return _mm256_sub_ps(a, b); }
+    static V mul(V a, V b) { return _mm256_mul_ps(a, b); }
+    static V max(V a, V b) { return _mm256_max_ps(a, b); }
+    static V min(V a, V b) { return _mm256_min_ps(a, b); }
+    static Mask le(V a, V b) { return _mm256_cmp_ps(a, b, _CMP_LE_OQ); }
+    static int bits(Mask m) { return _mm256_movemask_ps(m); }
+    // Lanes where any of a, b, c is < 0 (kLess) or > 0.
+    template <bool kLess>
+    static int any_sign(V a, V b, V c) {
+        constexpr int kCmp = kLess ? _CMP_LT_OQ : _CMP_GT_OQ;
+        const V z = _mm256_setzero_ps();
+        return _mm256_movemask_ps(_mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(a, z, kCmp), _mm256_cmp_ps(b, z, kCmp)),
+                                               _mm256_cmp_ps(c, z, kCmp)));
+    }
+};
+
+struct F64x4 {
+    using V = __m256d;
+    using Mask = __m256d;
+    static constexpr int kLanes = 4;
+    static V set1(double x) { return _mm256_set1_pd(x); }
+    static V load(const double* p) { return _mm256_loadu_pd(p); }
+    static V load(const float* p) { return _mm256_cvtps_pd(_mm_loadu_ps(p)); }
+    static void store(double* p, V x) { _mm256_storeu_pd(p, x); }
+    static V sub(V a, V b) { return _mm256_sub_pd(a, b); }
+    static V mul(V a, V b) { return _mm256_mul_pd(a, b); }
+    static V max(V a, V b) { return _mm256_max_pd(a, b); }
+    static V min(V a, V b) { return _mm256_min_pd(a, b); }
+    static Mask le(V a, V b) { return _mm256_cmp_pd(a, b, _CMP_LE_OQ); }
+    static V select(Mask m, V a, V b) { return _mm256_blendv_pd(b, a, m); }
+    static int bits(Mask m) { return _mm256_movemask_pd(m); }
+    template <bool kLess>
+    static int any_sign(V a, V b, V c) {
+        constexpr int kCmp = kLess ? _CMP_LT_OQ : _CMP_GT_OQ;
+        const V z = _mm256_setzero_pd();
+        return _mm256_movemask_pd(_mm256_or_pd(_mm256_or_pd(_mm256_cmp_pd(a, z, kCmp), _mm256_cmp_pd(b, z, kCmp)),
+                                               _mm256_cmp_pd(c, z, kCmp)));
+    }
+};
+#endif
+
+#if defined(__AVX512F__)
+struct F64x8 {
+    using V = __m512d;
+    using Mask = __mmask8;
+    static constexpr int kLanes = 8;
+    static V set1(double x) { return _mm512_set1_pd(x); }
+    static V load(const float* p) { return _mm512_cvtps_pd(_mm256_loadu_ps(p)); }
+    static void store(double* p, V x) { _mm512_storeu_pd(p, x); }
+    static V sub(V a, V b) { return _mm512_sub_pd(a, b); }
+    static V mul(V a, V b) { return _mm512_mul_pd(a, b); }
+    static V max(V a, V b) { return _mm512_max_pd(a, b); }
+    static V min(V a, V b) { return _mm512_min_pd(a, b); }
+    static Mask le(V a, V b) { return _mm512_cmp_pd_mask(a, b, _CMP_LE_OQ); }
+    static V select(Mask m, V a, V b) { return _mm512_mask_blend_pd(m, b, a); }
+    static int bits(Mask m) { return m; }
+};
+#endif
+
 #if !defined(RT_REAL_FLOAT)
 // Double rays test boxes in double: the float bounds convert exactly.
 using BoxReal = double;
@@ -64,68 +172,35 @@ inline BoxRay box_ray(const RayPre& p, const Bvh&, Real) {
 }
 
 // Entry distances of the node's children into `t` (HUGE_VAL for a miss), and a hit
-// mask; lane by lane (test_simd, where there is one, gives the same bits).
-inline int test_scalar(const BvhNode& n, const BoxRay& r, double tmin, double tmax, double t[kWidth]) {
+// mask, O::kLanes children at a time.
+template <class O>
+inline int test_lanes(const BvhNode& n, const BoxRay& r, double tmin, double tmax, double t[kWidth]) {
     int mask = 0;
-    for (int i = 0; i < kWidth; ++i) {
-        double tn = tmin, tf = tmax * kSlabWiden;
+    for (int h = 0; h < kWidth; h += O::kLanes) {
+        typename O::V tnear = O::set1(tmin), tfar = O::set1(tmax * kSlabWiden);
         for (int a = 0; a < 3; ++a) {
-            const double nearv = r.near_is_hi[a] ? n.hi[a][i] : n.lo[a][i];
-            const double farv = r.near_is_hi[a] ? n.lo[a][i] : n.hi[a][i];
-            const double t0 = (nearv - r.org[a]) * r.inv[a];
-            const double t1 = (farv - r.org[a]) * r.inv[a] * kSlabWiden;
-            tn = t0 > tn ? t0 : tn;
-            tf = t1 < tf ? t1 : tf;
+            const float* nearp = (r.near_is_hi[a] ? n.hi[a] : n.lo[a]) + h;
+            const float* farp = (r.near_is_hi[a] ? n.lo[a] : n.hi[a]) + h;
+            const typename O::V o = O::set1(r.org[a]), inv = O::set1(r.inv[a]);
+            const typename O::V t0 = O::mul(O::sub(O::load(nearp), o), inv);
+            const typename O::V t1 = O::mul(O::sub(O::load(farp), o), inv);
+            tnear = O::max(t0, tnear);
+            tfar = O::min(O::mul(t1, O::set1(kSlabWiden)), tfar);
         }
-        const bool h = tn <= tf;
-        t[i] = h ? tn : HUGE_VAL;
-        mask |= h ? 1 << i : 0;
+        const typename O::Mask hit = O::le(tnear, tfar);
+        O::store(t + h, O::select(hit, tnear, O::set1(HUGE_VAL)));
+        mask |= O::bits(hit) << h;
     }
     return mask;
 }
 
+// Eight lanes in one AVX-512 register, else two AVX halves.
 #if defined(__AVX512F__)
-#define RT_BOX_SIMD 1
-// test_scalar, eight lanes per AVX-512 instruction.
-inline int test_simd(const BvhNode& n, const BoxRay& r, double tmin, double tmax, double t[kWidth]) {
-    __m512d tnear = _mm512_set1_pd(tmin), tfar = _mm512_set1_pd(tmax * kSlabWiden);
-    for (int a = 0; a < 3; ++a) {
-        const float* nearp = r.near_is_hi[a] ? n.hi[a] : n.lo[a];
-        const float* farp = r.near_is_hi[a] ? n.lo[a] : n.hi[a];
-        const __m512d o = _mm512_set1_pd(r.org[a]), inv = _mm512_set1_pd(r.inv[a]);
-        const __m512d t0 = _mm512_mul_pd(_mm512_sub_pd(_mm512_cvtps_pd(_mm256_load_ps(nearp)), o), inv);
-        const __m512d t1 = _mm512_mul_pd(_mm512_sub_pd(_mm512_cvtps_pd(_mm256_load_ps(farp)), o), inv);
-        // max/min return their second operand when the first is NaN.
-        tnear = _mm512_max_pd(t0, tnear);
-        tfar = _mm512_min_pd(_mm512_mul_pd(t1, _mm512_set1_pd(kSlabWiden)), tfar);
-    }
-    const __mmask8 hit = _mm512_cmp_pd_mask(tnear, tfar, _CMP_LE_OQ);
-    _mm512_storeu_pd(t, _mm512_mask_blend_pd(hit, _mm512_set1_pd(HUGE_VAL), tnear));
-    return hit;
-}
+using BoxLanes = F64x8;
 #elif defined(__AVX__)
-#define RT_BOX_SIMD 1
-// test_scalar, four lanes per AVX instruction: the children in two halves.
-inline int test_simd(const BvhNode& n, const BoxRay& r, double tmin, double tmax, double t[kWidth]) {
-    int mask = 0;
-    for (int h = 0; h < kWidth; h += 4) {
-        __m256d tnear = _mm256_set1_pd(tmin), tfar = _mm256_set1_pd(tmax * kSlabWiden);
-        for (int a = 0; a < 3; ++a) {
-            const float* nearp = (r.near_is_hi[a] ? n.hi[a] : n.lo[a]) + h;
-            const float* farp = (r.near_is_hi[a] ? n.lo[a] : n.hi[a]) + h;
-            const __m256d o = _mm256_set1_pd(r.org[a]), inv = _mm256_set1_pd(r.inv[a]);
-            const __m256d t0 = _mm256_mul_pd(_mm256_sub_pd(_mm256_cvtps_pd(_mm_load_ps(nearp)), o), inv);
-            const __m256d t1 = _mm256_mul_pd(_mm256_sub_pd(_mm256_cvtps_pd(_mm_load_ps(farp)), o), inv);
-            // max/min return their second operand when the first is NaN.
-            tnear = _mm256_max_pd(t0, tnear);
-            tfar = _mm256_min_pd(_mm256_mul_pd(t1, _mm256_set1_pd(kSlabWiden)), tfar);
-        }
-        const __m256d hit = _mm256_cmp_pd(tnear, tfar, _CMP_LE_OQ);
-        _mm256_storeu_pd(t + h, _mm256_blendv_pd(_mm256_set1_pd(HUGE_VAL), tnear, hit));
-        mask |= _mm256_movemask_pd(hit) << h;
-    }
-    return mask;
-}
+using BoxLanes = F64x4;
+#else
+using BoxLanes = OneLane<double>;
 #endif
 
 #else
@@ -203,77 +278,42 @@ inline BoxRay box_ray(const RayPre& p, const Bvh& bvh, Real tmin) {
 }
 
 // Entry distances of the node's children into `t` (meaningful for hits only), and a
-// hit mask; lane by lane (test_simd, where there is one, gives the same bits).
-inline int test_scalar(const BvhNode& n, const BoxRay& r, float tmin, float tmax, float t[kWidth]) {
+// hit mask, O::kLanes children at a time.
+template <class O>
+inline int test_lanes(const BvhNode& n, const BoxRay& r, float tmin, float tmax, float t[kWidth]) {
     int mask = 0;
-    for (int i = 0; i < kWidth; ++i) {
-        float tn = tmin, tf = tmax;
-        for (int a = 0; a < 3; ++a) {
-            const float nearv = r.near_is_hi[a] ? n.hi[a][i] : n.lo[a][i];
-            const float farv = r.near_is_hi[a] ? n.lo[a][i] : n.hi[a][i];
-            const float t0 = (nearv - r.org_near[a]) * r.inv_near[a];
-            const float t1 = (farv - r.org_far[a]) * r.inv_far[a];
-            tn = t0 > tn ? t0 : tn;
-            tf = t1 < tf ? t1 : tf;
-        }
-        t[i] = tn;
-        mask |= tn <= tf ? 1 << i : 0;
-    }
-    return mask;
-}
-
-#if defined(__AVX__)
-#define RT_BOX_SIMD 1
-// test_scalar, eight lanes per AVX instruction.
-inline int test_simd(const BvhNode& n, const BoxRay& r, float tmin, float tmax, float t[kWidth]) {
-    __m256 tnear = _mm256_set1_ps(tmin), tfar = _mm256_set1_ps(tmax);
-    for (int a = 0; a < 3; ++a) {
-        const float* nearp = r.near_is_hi[a] ? n.hi[a] : n.lo[a];
-        const float* farp = r.near_is_hi[a] ? n.lo[a] : n.hi[a];
-        const __m256 t0 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(nearp), _mm256_set1_ps(r.org_near[a])),
-                                        _mm256_set1_ps(r.inv_near[a]));
-        const __m256 t1 = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(farp), _mm256_set1_ps(r.org_far[a])),
-                                        _mm256_set1_ps(r.inv_far[a]));
-        // max/min return their second operand when the first is NaN.
-        tnear = _mm256_max_ps(t0, tnear);
-        tfar = _mm256_min_ps(t1, tfar);
-    }
-    _mm256_storeu_ps(t, tnear);
-    return _mm256_movemask_ps(_mm256_cmp_ps(tnear, tfar, _CMP_LE_OQ));
-}
-#elif defined(__SSE2__)
-#define RT_BOX_SIMD 1
-// test_scalar, four lanes per SSE instruction: the children in two halves.
-inline int test_simd(const BvhNode& n, const BoxRay& r, float tmin, float tmax, float t[kWidth]) {
-    int mask = 0;
-    for (int h = 0; h < kWidth; h += 4) {
-        __m128 tnear = _mm_set1_ps(tmin), tfar = _mm_set1_ps(tmax);
+    for (int h = 0; h < kWidth; h += O::kLanes) {
+        typename O::V tnear = O::set1(tmin), tfar = O::set1(tmax);
         for (int a = 0; a < 3; ++a) {
             const float* nearp = (r.near_is_hi[a] ? n.hi[a] : n.lo[a]) + h;
             const float* farp = (r.near_is_hi[a] ? n.lo[a] : n.hi[a]) + h;
-            const __m128 t0 =
-                _mm_mul_ps(_mm_sub_ps(_mm_load_ps(nearp), _mm_set1_ps(r.org_near[a])), _mm_set1_ps(r.inv_near[a]));
-            const __m128 t1 =
-                _mm_mul_ps(_mm_sub_ps(_mm_load_ps(farp), _mm_set1_ps(r.org_far[a])), _mm_set1_ps(r.inv_far[a]));
-            // max/min return their second operand when the first is NaN.
-            tnear = _mm_max_ps(t0, tnear);
-            tfar = _mm_min_ps(t1, tfar);
+            const typename O::V t0 = O::mul(O::sub(O::load(nearp), O::set1(r.org_near[a])), O::set1(r.inv_near[a]));
+            const typename O::V t1 = O::mul(O::sub(O::load(farp), O::set1(r.org_far[a])), O::set1(r.inv_far[a]));
+            tnear = O::max(t0, tnear);
+            tfar = O::min(t1, tfar);
         }
-        _mm_storeu_ps(t + h, tnear);
-        mask |= _mm_movemask_ps(_mm_cmple_ps(tnear, tfar)) << h;
+        O::store(t + h, tnear);
+        mask |= O::bits(O::le(tnear, tfar)) << h;
     }
     return mask;
 }
+
+// Eight lanes in one AVX register, else two SSE halves.
+#if defined(__AVX__)
+using BoxLanes = F32x8;
+#elif defined(__SSE2__)
+using BoxLanes = F32x4;
+#else
+using BoxLanes = OneLane<float>;
 #endif
 #endif
 
-// The box test of the traversal: the SIMD kernel where the target has one.
+// The box test of the traversal, and its lane-by-lane reference (same bits).
 inline int test_boxes(const BvhNode& n, const BoxRay& r, BoxReal tmin, BoxReal tmax, BoxReal t[kWidth]) {
-#if defined(RT_BOX_SIMD)
-    return test_simd(n, r, tmin, tmax, t);
-#else
-    return test_scalar(n, r, tmin, tmax, t);
-#endif
+    return test_lanes<BoxLanes>(n, r, tmin, tmax, t);
+}
+inline int test_scalar(const BvhNode& n, const BoxRay& r, BoxReal tmin, BoxReal tmax, BoxReal t[kWidth]) {
+    return test_lanes<OneLane<BoxReal>>(n, r, tmin, tmax, t);
 }
 
 // Tests one BVH primitive; returns true with t (and weights) on a hit in (tmin, tmax).
@@ -291,50 +331,9 @@ inline bool hit_prim(const Scene& s, const RayPre& p, uint32_t id, Real tmin, Re
 // rest of the test (triangle_hit) runs only for the lanes whose edges the ray
 // passes, in leaf order.
 
-// The operations of the edge stage on one register of T lanes.
-template <class T>
-struct Lanes;
-
-template <>
-struct Lanes<double> {
-    using V = __m256d;
-    static constexpr int kWidth = 4;
-    static V set1(double x) { return _mm256_set1_pd(x); }
-    static V load(const double* p) { return _mm256_loadu_pd(p); }
-    static V load(const float* p) { return _mm256_cvtps_pd(_mm_loadu_ps(p)); }
-    static void store(double* p, V x) { _mm256_store_pd(p, x); }
-    static V sub(V a, V b) { return _mm256_sub_pd(a, b); }
-    static V mul(V a, V b) { return _mm256_mul_pd(a, b); }
-    // Lanes where any of a, b, c is < 0 (kLess) or > 0.
-    template <bool kLess>
-    static int any_sign(V a, V b, V c) {
-        constexpr int kCmp = kLess ? _CMP_LT_OQ : _CMP_GT_OQ;
-        const V z = _mm256_setzero_pd();
-        return _mm256_movemask_pd(_mm256_or_pd(_mm256_or_pd(_mm256_cmp_pd(a, z, kCmp), _mm256_cmp_pd(b, z, kCmp)),
-                                               _mm256_cmp_pd(c, z, kCmp)));
-    }
-};
-
-template <>
-struct Lanes<float> {
-    using V = __m256;
-    static constexpr int kWidth = 8;
-    static V set1(float x) { return _mm256_set1_ps(x); }
-    static V load(const float* p) { return _mm256_loadu_ps(p); }
-    static void store(float* p, V x) { _mm256_store_ps(p, x); }
-    static V sub(V a, V b) { return _mm256_sub_ps(a, b); }
-    static V mul(V a, V b) { return _mm256_mul_ps(a, b); }
-    template <bool kLess>
-    static int any_sign(V a, V b, V c) {
-        constexpr int kCmp = kLess ? _CMP_LT_OQ : _CMP_GT_OQ;
-        const V z = _mm256_setzero_ps();
-        return _mm256_movemask_ps(_mm256_or_ps(_mm256_or_ps(_mm256_cmp_ps(a, z, kCmp), _mm256_cmp_ps(b, z, kCmp)),
-                                               _mm256_cmp_ps(c, z, kCmp)));
-    }
-};
-
-using L = Lanes<Real>;
-constexpr int kLanes = L::kWidth;
+// The edge stage's lanes: one AVX register of Real.
+using L = std::conditional_t<std::is_same_v<Real, float>, F32x8, F64x4>;
+constexpr int kLanes = L::kLanes;
 static_assert(kLanes == int(kLeafBlock), "a leaf block is one register");
 
 struct EdgesN {
