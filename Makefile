@@ -66,12 +66,13 @@ build/target: FORCE
 # rebuilds what it affects instead of mixing objects of two configurations.
 $(BUILD)/config: FORCE
 	@mkdir -p $(BUILD)
-	@printf '%s\n' '$(CXX) $(CPPFLAGS) $(CXXFLAGS)' '$(LDLIBS)' | cmp -s - $@ || \
-	    printf '%s\n' '$(CXX) $(CPPFLAGS) $(CXXFLAGS)' '$(LDLIBS)' > $@
+	@printf '%s\n' '$(CXX) $(CPPFLAGS) $(CXXFLAGS)' '$(LDLIBS) $(RT_STATIC)' | cmp -s - $@ || \
+	    printf '%s\n' '$(CXX) $(CPPFLAGS) $(CXXFLAGS)' '$(LDLIBS) $(RT_STATIC)' > $@
 
 # The float library first: its few references to stb are resolved by librt.a after it.
+# Linked statically where the static libraries are at hand (mk/static.mk).
 raytracer: $(BUILD)/src/main.o $(BUILD)/librt_float.a $(BUILD)/librt.a build/target $(BUILD)/config
-	$(CXX) $(CXXFLAGS) -o $@ $(filter-out build/target $(BUILD)/config,$^) $(LDLIBS)
+	$(CXX) $(CXXFLAGS) $(RT_STATIC) -o $@ $(filter-out build/target $(BUILD)/config,$^) $(RAYTRACER_LDLIBS)
 
 .PHONY: FORCE
 FORCE:
