@@ -680,7 +680,9 @@ TEST(BvhBuild, CollapseKeepsTheLeavesAndFillsTheNodes) {
             EXPECT_TRUE(a.leaves == b.leaves) << a.leaves.size() << " leaves without, " << b.leaves.size() << " with";
             EXPECT_LE(b.inner_area, a.inner_area);
             EXPECT_LE(collapsed.depth, plain.depth);
-            if (n >= 3000) EXPECT_LT(collapsed.nodes.size(), plain.nodes.size());
+            if (n >= 3000) {
+                EXPECT_LT(collapsed.nodes.size(), plain.nodes.size());
+            }
             size_t fits = 0;
             for (const rt::BvhNode& nd : collapsed.nodes)
                 for (int k = 0; k < rt::BvhNode::kWidth; ++k)
