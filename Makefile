@@ -54,11 +54,11 @@ TEST_FLOAT_OBJ := $(TEST_SRC:%.cpp=$(BUILD)/float/%.o)
 .PHONY: all test unit clean
 all: raytracer
 
-# build/target names the object folder ./raytracer was last linked from; it changes
-# (and forces a relink) only when MARCH does.
+# build/target names the object folder ./raytracer was last linked from and how (static
+# or not, mk/static.mk); it changes (and forces a relink) only when MARCH or RT_STATIC does.
 build/target: FORCE
 	@mkdir -p build
-	@echo '$(BUILD)' | cmp -s - $@ || echo '$(BUILD)' > $@
+	@echo '$(BUILD) $(RT_STATIC)' | cmp -s - $@ || echo '$(BUILD) $(RT_STATIC)' > $@
 
 # $(BUILD)/config holds the compile and link lines of this configuration (compiler, flags,
 # optional libraries found or not: see mk/convert.mk); it changes only when they do, and
@@ -66,8 +66,8 @@ build/target: FORCE
 # rebuilds what it affects instead of mixing objects of two configurations.
 $(BUILD)/config: FORCE
 	@mkdir -p $(BUILD)
-	@printf '%s\n' '$(CXX) $(CPPFLAGS) $(CXXFLAGS)' '$(LDLIBS) $(RT_STATIC)' | cmp -s - $@ || \
-	    printf '%s\n' '$(CXX) $(CPPFLAGS) $(CXXFLAGS)' '$(LDLIBS) $(RT_STATIC)' > $@
+	@printf '%s\n' '$(CXX) $(CPPFLAGS) $(CXXFLAGS)' '$(LDLIBS)' | cmp -s - $@ || \
+	    printf '%s\n' '$(CXX) $(CPPFLAGS) $(CXXFLAGS)' '$(LDLIBS)' > $@
 
 # The float library first: its few references to stb are resolved by librt.a after it.
 # Linked statically where the static libraries are at hand (mk/static.mk).
