@@ -116,7 +116,7 @@ public:
         bytes_ = 0;
     }
     // Storage for `capacity` nodes, uninitialised; then set_size(n) with n <= capacity.
-    // Arrays of 8 MiB or more ask for transparent huge pages (bvh_build.cpp).
+    // Large arrays ask for transparent huge pages (allocate_bytes, rt/memory.h).
     void allocate(size_t capacity);
     void set_size(size_t n) { size_ = n; }
     // Gives the whole pages past size() back to the system (after nodes were

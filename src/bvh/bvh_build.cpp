@@ -23,6 +23,7 @@
 #endif
 
 #include "rt/bvh.h"
+#include "rt/memory.h"
 #include "rt/threads.h"
 
 namespace rt {
@@ -38,15 +39,8 @@ void NodeArray::allocate(size_t capacity) {
     data_.reset();
     size_ = 0;
     const size_t bytes = capacity * sizeof(BvhNode);
-    constexpr size_t kHuge = size_t(2) << 20;
-    void* p = nullptr;
-    if (bytes >= 4 * kHuge) {
-        const size_t rounded = (bytes + kHuge - 1) / kHuge * kHuge;
-        if (posix_memalign(&p, kHuge, rounded) != 0) throw std::bad_alloc();
-        madvise(p, rounded, MADV_HUGEPAGE);  // a request: refused on some kernels, harmless
-    } else if (posix_memalign(&p, alignof(BvhNode), bytes) != 0) {
-        throw std::bad_alloc();
-    }
+    void* p = allocate_bytes(bytes, alignof(BvhNode));
+    if (!p) throw std::bad_alloc();
     data_.reset(static_cast<BvhNode*>(p));
     bytes_ = bytes;
 }

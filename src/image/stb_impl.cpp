@@ -4,10 +4,18 @@
 // writer's zlib stream can come from libdeflate through stb's STBIW_ZLIB_COMPRESS hook
 // (stb_image_write.h, "BUILDING"). Without libdeflate (RT_NO_LIBDEFLATE, mk/png.mk)
 // stb's own compressor is used. Either way the pixels are the same, PNG being lossless.
+#include <cstdlib>
+
+#include "rt/memory.h"
+
+// stb's image buffers (the filtered rows: as large as the image) from allocate_bytes,
+// for its huge pages.
+#define STBIW_MALLOC(sz) rt::allocate_bytes(sz)
+#define STBIW_REALLOC(p, newsz) std::realloc(p, newsz)
+#define STBIW_FREE(p) std::free(p)
+
 #ifndef RT_NO_LIBDEFLATE
 #include <libdeflate.h>
-
-#include <cstdlib>
 
 namespace {
 // libdeflate's compressor of the level asked last on this thread, kept for the next
@@ -41,7 +49,7 @@ unsigned char* rt_zlib_compress(unsigned char* data, int data_len, int* out_len,
     libdeflate_compressor* c = cache.get(quality);
     if (!c) return nullptr;
     const size_t bound = libdeflate_zlib_compress_bound(c, static_cast<size_t>(data_len));
-    auto* out = static_cast<unsigned char*>(std::malloc(bound));
+    auto* out = static_cast<unsigned char*>(rt::allocate_bytes(bound));
     const size_t n = out ? libdeflate_zlib_compress(c, data, static_cast<size_t>(data_len), out, bound) : 0;
     if (n == 0) {  // no memory, or the bound was too small (never, by libdeflate's contract)
         std::free(out);

@@ -1,0 +1,46 @@
+#include "rt/memory.h"
+
+#include <sys/mman.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <new>
+
+namespace rt {
+
+void* allocate_bytes(size_t n, size_t align) noexcept {
+    constexpr size_t kHuge = kHugePageBytes;
+    if (n < kHuge - kHuge / 8) {
+        if (align <= alignof(std::max_align_t)) return std::malloc(n ? n : 1);
+        void* p = nullptr;
+        return posix_memalign(&p, std::max(align, sizeof(void*)), n) == 0 ? p : nullptr;
+    }
+    const size_t whole = n / kHuge * kHuge;
+    const size_t rounded = whole == n ? n : whole + kHuge;
+    if (rounded - n <= std::min(n / 8, size_t(256) << 10)) n = rounded;
+    void* p = nullptr;
+    if (posix_memalign(&p, kHuge, n) != 0) return nullptr;
+    // A request: refused on some kernels (or THP turned off), harmless then.
+    madvise(p, n / kHuge * kHuge, MADV_HUGEPAGE);
+    return p;
+}
+
+}  // namespace rt
+
+#if !defined(RT_REAL_FLOAT)
+// The global operator new, replaced (C++17 [new.delete.single]) by one that takes its
+// memory from allocate_bytes: every std::vector, string and new-expression of the
+// program gets huge pages when it is large. libstdc++'s other forms (new[], nothrow)
+// call this one, and its operator delete calls std::free, which releases this memory
+// too; the aligned forms (std::align_val_t) stay libstdc++'s own. Compiled in the double copy of the library
+// only: the float copy (src/io/memory.cpp again, as namespace rt_float) must not define
+// it a second time.
+void* operator new(std::size_t n) {
+    for (;;) {
+        if (void* p = rt::allocate_bytes(n)) return p;
+        std::new_handler handler = std::get_new_handler();
+        if (!handler) throw std::bad_alloc();
+        handler();
+    }
+}
+#endif
