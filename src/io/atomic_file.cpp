@@ -10,7 +10,7 @@
 
 namespace rt {
 
-void write_file_atomic(const std::string& path, const std::string& bytes) {
+void write_file_atomic(const std::string& path, std::string_view bytes) {
     // Write beside the target and rename over it, so that readers never see a
     // partial file and a failure leaves nothing behind.
     const std::string tmp = path + ".tmp" + std::to_string(::getpid());
