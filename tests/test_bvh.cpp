@@ -1038,11 +1038,11 @@ SlabCase random_slab_case(Rng& rng, rt::Bvh& bvh) {
             if (a != keep) d[a] = 0;
     } else if (dir_kind == 2) {  // tiny or huge components
         for (int a = 0; a < 3; ++a) {
-            const size_t k = pick(rng, 4);
-            d[a] *= k == 0 ? Real(1e-30) : k == 1 ? Real(1e30) : k == 2 ? Real(1e-45) : 1;
+            const size_t k = pick(rng, 5);
+            d[a] *= k == 0 ? Real(1e-30) : k == 1 ? Real(1e30) : k == 2 ? Real(1e-45) : k == 3 ? Real(3e38) : 1;
         }
     } else if (dir_kind == 3) {  // tiny or huge as a whole
-        d = d * (pick(rng, 2) ? Real(1e-30) : Real(1e30));
+        d = d * (pick(rng, 3) == 0 ? Real(1e-30) : pick(rng, 2) ? Real(1e30) : Real(2e38));
     }
     if (d[0] == 0 && d[1] == 0 && d[2] == 0) d[2] = 1;
     // The origin is picked first, some distance back from the box; the padding the test
