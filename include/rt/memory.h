@@ -6,7 +6,8 @@
 // 2 MiB transparent huge pages where the kernel grants them (madvise(MADV_HUGEPAGE);
 // refused or not configured, the pages stay small and nothing else changes): one
 // fault per 2 MiB instead of 512. The global operator new goes through it
-// (src/io/memory.cpp), so every std::vector and string does.
+// (src/io/memory.cpp), so every std::vector and string does (but under
+// AddressSanitizer, which keeps its own).
 #pragma once
 #include <cstddef>
 

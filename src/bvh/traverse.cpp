@@ -239,6 +239,10 @@ constexpr float kInvWiden = 0x1p-21f;
 // Above this magnitude a bound or origin could make a float subtraction overflow:
 // such rays enter every box (see box_ray).
 constexpr float kBoxDomain = 0x1p125f;
+// Above this magnitude a direction component's float inverse could be subnormal (below
+// FLT_MIN), where rounding is no longer within a factor 1 + u: such rays enter every box
+// too (no ray the renderer spawns: theirs are unit length).
+constexpr float kDirDomain = 0x1p100f;
 
 // Per-ray data of the float box test: for each axis the entry into the slab is
 // (near - org_near) * inv_near and the exit (far - org_far) * inv_far, the near
@@ -249,9 +253,10 @@ struct BoxRay {
     int near_is_hi[3];
 };
 
-// The box ray for rays with tmin >= 0 whose padded origin and scene bounds stay
-// within kBoxDomain; any other ray gets NaN inverses, which the max and min of
-// test_boxes skip: it enters every box (and empty slots, leaves of no primitives).
+// The box ray for rays with tmin >= 0, direction components within kDirDomain and
+// padded origin and scene bounds within kBoxDomain; any other ray gets NaN inverses,
+// which the max and min of test_boxes skip: it enters every box (and empty slots,
+// leaves of no primitives).
 inline BoxRay box_ray(const RayPre& p, const Bvh& bvh, Real tmin) {
     BoxRay b;
     // Grown by 1/32 so that the origin's rounding to nearest below (at most u of
@@ -261,8 +266,8 @@ inline BoxRay box_ray(const RayPre& p, const Bvh& bvh, Real tmin) {
     for (int a = 0; a < 3; ++a) {
         const float d = p.ray.dir[a], o = p.ray.org[a];
         b.near_is_hi[a] = std::signbit(d) ? 1 : 0;
-        // 1/d within a factor 1 + u; a finite d whose inverse overflows gets FLT_MAX
-        // as its lower bound, an infinite one 0 for both.
+        // 1/d within a factor 1 + u; a d whose inverse overflows gets FLT_MAX as its
+        // lower bound.
         const float inv = 1 / d, shrunk = std::fabs(inv) * (1 - kInvWiden);
         b.inv_near[a] = d == 0 ? inv : std::copysign(shrunk < FLT_MAX ? shrunk : FLT_MAX, d);
         b.inv_far[a] = inv * (1 + kInvWiden);
@@ -270,7 +275,8 @@ inline BoxRay box_ray(const RayPre& p, const Bvh& bvh, Real tmin) {
         const float out = b.near_is_hi[a] ? -pad : pad;
         b.org_near[a] = pad == 0 ? o : o + out;
         b.org_far[a] = pad == 0 ? o : o - out;
-        in_domain = in_domain && std::fabs(b.org_near[a]) < kBoxDomain && std::fabs(b.org_far[a]) < kBoxDomain;
+        in_domain = in_domain && std::fabs(d) <= kDirDomain && std::fabs(b.org_near[a]) < kBoxDomain &&
+                    std::fabs(b.org_far[a]) < kBoxDomain;
     }
     if (!in_domain)
         for (int a = 0; a < 3; ++a) b.inv_near[a] = b.inv_far[a] = std::numeric_limits<float>::quiet_NaN();

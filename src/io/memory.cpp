@@ -27,14 +27,17 @@ void* allocate_bytes(size_t n, size_t align) noexcept {
 
 }  // namespace rt
 
-#if !defined(RT_REAL_FLOAT)
+#if !defined(RT_REAL_FLOAT) && !defined(__SANITIZE_ADDRESS__)
 // The global operator new, replaced (C++17 [new.delete.single]) by one that takes its
 // memory from allocate_bytes: every std::vector, string and new-expression of the
 // program gets huge pages when it is large. libstdc++'s other forms (new[], nothrow)
-// call this one, and its operator delete calls std::free, which releases this memory
-// too; the aligned forms (std::align_val_t) stay libstdc++'s own. Compiled in the double copy of the library
+// call this one, and its other deletes call the two below; the aligned forms
+// (std::align_val_t) stay libstdc++'s own. operator delete is replaced too, although
+// libstdc++'s also calls std::free: tools that track the pairing (valgrind) then see
+// malloc and free on both sides. Compiled in the double copy of the library
 // only: the float copy (src/io/memory.cpp again, as namespace rt_float) must not define
-// it a second time.
+// it a second time. Not under AddressSanitizer (make check-asan), whose own operator
+// new and delete must pair with each other to check them.
 void* operator new(std::size_t n) {
     for (;;) {
         if (void* p = rt::allocate_bytes(n)) return p;
@@ -43,4 +46,7 @@ void* operator new(std::size_t n) {
         handler();
     }
 }
+
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 #endif
