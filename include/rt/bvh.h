@@ -178,10 +178,11 @@ struct Bvh {
 // The traversal's box test (traverse.cpp), exposed for the tests. It must accept
 // every child box of `node` that the exact ray org + t dir, t in [tmin, tmax],
 // enters once the box is grown by box_padding(bvh, ray) on every side (tmin >= 0);
-// it never accepts an empty slot. Returns the mask of accepted children and their
-// entry distances in t (for accepted ones: in float at most the exact entry rounded
-// up to a float; in double at most a factor 1 + 2^-50 above it, three roundings,
-// give or take a few subnormals where it underflows).
+// it never accepts an empty slot, but for float rays outside the float test's
+// domain (traverse.cpp, box_ray), which enter every slot. Returns the mask of
+// accepted children and their entry distances in t (for accepted ones: in float at
+// most the exact entry rounded up to a float; in double at most a factor 1 + 2^-50
+// above it, three roundings, give or take a few subnormals where it underflows).
 // `scalar` runs the lane-by-lane kernel instead of the SIMD one, which gives the
 // same bits.
 int test_node_boxes(const Bvh& bvh, const BvhNode& node, const Ray& ray, Real tmin, Real tmax, Real t[BvhNode::kWidth],
