@@ -134,7 +134,9 @@ private:
 
 // Primitives a leaf tests at once (traverse.cpp): one AVX2 register of Real
 // lanes, four triangles in double and eight in float; one without AVX2.
-#if defined(__AVX2__)
+#if defined(__AVX512F__)
+inline constexpr uint32_t kLeafBlock = 8;
+#elif defined(__AVX2__)
 inline constexpr uint32_t kLeafBlock = std::is_same_v<Real, float> ? 8 : 4;
 #else
 inline constexpr uint32_t kLeafBlock = 1;

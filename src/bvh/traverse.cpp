@@ -137,6 +137,13 @@ struct F64x8 {
     static Mask le(V a, V b) { return _mm512_cmp_pd_mask(a, b, _CMP_LE_OQ); }
     static V select(Mask m, V a, V b) { return _mm512_mask_blend_pd(m, b, a); }
     static int bits(Mask m) { return m; }
+    static V load(const double* p) { return _mm512_loadu_pd(p); }
+    template <bool kLess>
+    static int any_sign(V a, V b, V c) {
+        constexpr int kCmp = kLess ? _CMP_LT_OQ : _CMP_GT_OQ;
+        const V z = _mm512_setzero_pd();
+        return _mm512_cmp_pd_mask(a, z, kCmp) | _mm512_cmp_pd_mask(b, z, kCmp) | _mm512_cmp_pd_mask(c, z, kCmp);
+    }
 };
 #endif
 
@@ -337,8 +344,13 @@ inline bool hit_prim(const Scene& s, const RayPre& p, uint32_t id, Real tmin, Re
 // rest of the test (triangle_hit) runs only for the lanes whose edges the ray
 // passes, in leaf order.
 
-// The edge stage's lanes: one AVX register of Real.
+// The edge stage's lanes: one AVX register of Real, or eight doubles in one
+// AVX-512 register.
+#if defined(__AVX512F__)
+using L = std::conditional_t<std::is_same_v<Real, float>, F32x8, F64x8>;
+#else
 using L = std::conditional_t<std::is_same_v<Real, float>, F32x8, F64x4>;
+#endif
 constexpr int kLanes = L::kLanes;
 static_assert(kLanes == int(kLeafBlock), "a leaf block is one register");
 
@@ -361,7 +373,21 @@ struct VerticesN {
 inline VerticesN indexed_vertices(const Scene& s, const RayPre& p, const uint32_t ids[kLanes], int n) {
     const int axis[3] = {p.kx, p.ky, p.kz};
     VerticesN r;
-#if !defined(RT_REAL_FLOAT)
+#if !defined(RT_REAL_FLOAT) && defined(__AVX512F__)
+    // The eight triangles' vertex indices by vertex: v0 of each, v1 of each, v2 of each.
+    alignas(32) uint32_t vi[3][kLanes];
+    for (int j = 0; j < kLanes; ++j) {
+        const uint32_t* v = s.geometry.triangles[ids[j < n ? j : n - 1]].v;
+        for (int k = 0; k < 3; ++k) vi[k][j] = v[k];
+    }
+    const double* base = &s.geometry.positions.data()->x;
+    for (int k = 0; k < 3; ++k) {
+        const __m512i i64 = _mm512_cvtepu32_epi64(_mm256_load_si256(reinterpret_cast<const __m256i*>(vi[k])));
+        const __m512i i3 = _mm512_add_epi64(i64, _mm512_slli_epi64(i64, 1));  // Vec3 = 3 doubles
+        for (int c = 0; c < 3; ++c)
+            r.v[k][c] = _mm512_sub_pd(_mm512_i64gather_pd(i3, base + axis[c], 8), _mm512_set1_pd(p.org_k[c]));
+    }
+#elif !defined(RT_REAL_FLOAT)
     // The four triangles' vertex indices, transposed: v0 of each, v1 of each, v2 of each.
     // (Two loads each: a 16-byte load could read past the last 12-byte triangle.)
     __m128i t[4];
@@ -527,6 +553,15 @@ inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint16_t 
 }
 #endif
 
+// Starts loading the node a stack entry names while the traversal goes on: the ray
+// reaches it after the nearer subtrees, and the traversal mostly waits for node
+// loads. Leaves are not prefetched: that measured slower (docs/speed.md).
+inline void prefetch_node(const Bvh& bvh, int32_t child) {
+    if (child < 0) return;
+    const char* p = reinterpret_cast<const char*>(&bvh.nodes[child]);
+    for (int line = 0; line < int(sizeof(BvhNode)); line += 64) __builtin_prefetch(p + line);
+}
+
 struct StackEntry {
     int32_t child;   // node index, or ~first for a leaf
     uint16_t count;  // leaf size
@@ -603,6 +638,7 @@ bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
                     for (int j = 0; j + 1 < k; ++j) {
                         const int i = order[j];
                         stack[sp++] = {n.child[i], n.count[i], t[i]};
+                        prefetch_node(s.accel.bvh, n.child[i]);
                     }
                     const int i = order[k - 1];
                     e = {n.child[i], n.count[i], t[i]};
@@ -703,6 +739,7 @@ bool any_hit(const Scene& s, const Ray& ray, Real tmin, Real tmax, uint32_t* occ
                     }
                     stack[sp] = n.child[i];
                     counts[sp++] = n.count[i];
+                    prefetch_node(s.accel.bvh, n.child[i]);
                 }
                 continue;
             }
