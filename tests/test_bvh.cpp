@@ -191,6 +191,49 @@ struct Checker {
         }
     }
 
+    // closest_hits (the packet traversal) against closest_hit, ray by ray, for the
+    // rays of one packet: the same answer to the last bit (hit, t, primitive,
+    // leaf-order corners, and a triangle's weights: other shapes have none). Rays from random places make packets whose rays
+    // part at once; neighbouring camera rays, packets that part at silhouettes.
+    void packet(const rt::Ray* rays, int n, Real tmin, Real tmax) {
+        for (bool cull : {false, true}) {
+            ++queries;
+            rt::Hit got[rt::kPacket];
+            bool found[rt::kPacket];
+            rt::closest_hits(s, rays, n, tmin, tmax, cull, got, found);
+            for (int i = 0; i < n; ++i) {
+                rt::Hit want;
+                const bool want_found = rt::closest_hit(s, rays[i], tmin, tmax, cull, want);
+                const std::string where = describe(rays[i], tmin, tmax) + (cull ? " cull" : " no cull") + ", ray " +
+                                          std::to_string(i) + " of a packet of " + std::to_string(n);
+                if (found[i] != want_found) {
+                    fail(where + ": closest_hits says " + (found[i] ? "hit" : "miss") + ", closest_hit " +
+                         (want_found ? "hit" : "miss"));
+                } else if (want_found &&
+                           (got[i].t != want.t || got[i].kind != want.kind || got[i].index != want.index ||
+                            got[i].corners != want.corners || got[i].stride != want.stride ||
+                            (want.kind == rt::ShapeKind::Triangle &&
+                             (got[i].w[0] != want.w[0] || got[i].w[1] != want.w[1] || got[i].w[2] != want.w[2])))) {
+                    fail(where + ": closest_hits and closest_hit differ");
+                }
+            }
+        }
+    }
+
+    // Closest-hit queries over (0, inf) are also collected into packets of 1, 2, ..
+    // kPacket rays in turn (pending), checked by packet(); finish() checks the last one.
+    std::vector<rt::Ray> pending = {};
+    int next_packet = 1;
+    void collect(const rt::Ray& r) {
+        pending.push_back(r);
+        if (static_cast<int>(pending.size()) == next_packet) finish();
+    }
+    void finish() {
+        if (!pending.empty()) packet(pending.data(), static_cast<int>(pending.size()), 0, HUGE_VAL);
+        pending.clear();
+        next_packet = next_packet % rt::kPacket + 1;
+    }
+
     void any(const rt::Ray& r, Real tmin, Real tmax) {
         ++queries;
         const bool want = brute_any(s, r, tmin, tmax);
@@ -447,6 +490,7 @@ void shoot(const rt::Scene& s, Checker& ck, Rng& rng, int rays, Real extent) {
         if (!(len > 0)) continue;
         const rt::Ray r{org, dir / len};
         ck.closest(r, 0, HUGE_VAL);
+        ck.collect(r);
         // Random intervals, for both queries.
         const Real tmin = (rng() % 3 == 0) ? Real(0) : uniform(rng, 0, far);
         const Real tmax = (rng() % 4 == 0) ? Real(HUGE_VAL) : tmin + uniform(rng, 0, far);
@@ -575,6 +619,7 @@ void run_soup(const SoupSpec& spec, int rays, Vertices vertices = Vertices::kDou
     }
     Checker ck{s};
     shoot(s, ck, rng, rays, spec.extent);
+    ck.finish();
     EXPECT_EQ(ck.mismatches, 0) << "of " << ck.queries << " queries";
     // The rays must actually hit things, or the comparison says little.
     if (!s.geometry.triangles.empty() || !s.geometry.spheres.empty()) {
@@ -786,6 +831,7 @@ TEST(BvhProperty, LeafBlocksOnSharedEdges) {
             const Real dist = rt::length(to);
             const rt::Ray r{from, to / dist};
             ck.closest(r, 0, HUGE_VAL);
+            ck.collect(r);
             ck.any(r, 0, HUGE_VAL);
             // Inner vertices and edges only: the border ones may be grazed from outside.
             const Real lim = Real(n) - 1;
@@ -795,6 +841,7 @@ TEST(BvhProperty, LeafBlocksOnSharedEdges) {
                 if (!rt::closest_hit(s, r, 0, HUGE_VAL, false, h)) ++missed;
             }
         }
+        ck.finish();
         EXPECT_EQ(ck.mismatches, 0) << "of " << ck.queries << " queries";
         EXPECT_GT(ck.hits, ck.closest_queries / 4);
         EXPECT_GT(through, 1000);
@@ -831,6 +878,7 @@ TEST(BvhProperty, AllCoincident) {
     Rng rng(5);
     Checker ck{s};
     shoot(s, ck, rng, 300, 2);
+    ck.finish();
     EXPECT_EQ(ck.mismatches, 0);
 }
 
@@ -1201,11 +1249,23 @@ void check_official(const std::string& rel, int rays, size_t min_triangles) {
             r = {org, rt::normalize(d)};
         }
         ck.closest(r, 0, HUGE_VAL);
+        ck.collect(r);
+        if (k % 3 == 0) {
+            // The camera rays of the pixel and the next seven in its row, as the renderer's packets.
+            const rt::Camera& cam = s.setup.cameras[0];
+            const int x = static_cast<int>(pick(rng, size_t(cam.width))),
+                      y = static_cast<int>(pick(rng, size_t(cam.height)));
+            rt::Ray row[rt::kPacket];
+            int n = 0;
+            for (; n < rt::kPacket && x + n < cam.width; ++n) row[n] = cam.primary_ray(x + n, y);
+            ck.packet(row, n, 0, HUGE_VAL);
+        }
         ck.any(r, 0, HUGE_VAL);
         const Real span = rt::length(size);
         const Real tmin = uniform(rng, 0, span), tmax = tmin + uniform(rng, 0, span);
         ck.any(r, tmin, tmax);
     }
+    ck.finish();
     EXPECT_EQ(ck.mismatches, 0) << "of " << ck.queries << " queries on " << path;
     EXPECT_GT(ck.hits, ck.closest_queries / 20) << path;
 }

@@ -59,6 +59,10 @@ struct alignas(64) TraceCache {
 // `record`, when given, receives the ray tree (rt/trace.h); renders pass none.
 Vec3 trace_primary(const Scene& scene, const Ray& ray, const TraceOptions& options, TraceCache* cache = nullptr,
                    RayTrace* record = nullptr);
+// trace_primary for n primary rays at once (1 <= n <= kPacket): the same radiance
+// in radiance[0 .. n), their closest hits found by one packet traversal (closest_hits).
+void trace_primaries(const Scene& scene, const Ray* rays, int n, const TraceOptions& options, TraceCache* cache,
+                     Vec3* radiance);
 
 // x^e for the Blinn-Phong lobe: whole exponents up to 1024 by repeated squaring
 // (exact to a few ulps, several times faster than std::pow), others by std::pow.

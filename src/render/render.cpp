@@ -50,12 +50,19 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
             // at the same time.
             for (int y = y0; y < y1; ++y) {
                 uint8_t row[kTile * 3];
-                for (int x = x0; x < x1; ++x) {
-                    const Vec3 c = trace_primary(scene, cam.primary_ray(x, y), topt, &cache);
-                    uint8_t* px = &row[(x - x0) * 3];
-                    px[0] = quantize(c.x, options.rounding);
-                    px[1] = quantize(c.y, options.rounding);
-                    px[2] = quantize(c.z, options.rounding);
+                // Neighbouring pixels' camera rays traverse the tree as one packet.
+                for (int x = x0; x < x1; x += kPacket) {
+                    const int n = std::min(kPacket, x1 - x);
+                    Ray rays_in[kPacket];
+                    Vec3 c[kPacket];
+                    for (int i = 0; i < n; ++i) rays_in[i] = cam.primary_ray(x + i, y);
+                    trace_primaries(scene, rays_in, n, topt, &cache, c);
+                    for (int i = 0; i < n; ++i) {
+                        uint8_t* px = &row[(x + i - x0) * 3];
+                        px[0] = quantize(c[i].x, options.rounding);
+                        px[1] = quantize(c[i].y, options.rounding);
+                        px[2] = quantize(c[i].z, options.rounding);
+                    }
                 }
                 std::copy(row, row + (x1 - x0) * 3, &img.rgb[(static_cast<size_t>(y) * cam.width + x0) * 3]);
             }

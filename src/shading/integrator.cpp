@@ -31,6 +31,11 @@ struct Integrator {
     TraceCache* cache;  // may be null
     RayCounts& rays;    // the cache's counts, or a throwaway
 
+    // Culling applies to every ray but those inside a dielectric, and shadow rays
+    // (reference-conventions.md, "Back-face culling"; docs/conventions.md for
+    // which rays count as inside).
+    bool cull_of(int medium) const { return opt.cull && medium == kNoMedium; }
+
     // For a recorded tree only: the nearest primitive in (tmin, tmax) without culling.
     bool nearest_unculled(const Ray& ray, Real tmin, Real tmax, ShapeRef& shape, Real& t) const {
         Hit h;
@@ -128,13 +133,17 @@ struct Integrator {
     // including a mirror's or conductor's reflection met inside the glass, is not.
     // `weight` is what this ray's radiance is multiplied by in the pixel. `rec`: this
     // ray's node of the recorded tree (its kind, factor and weight set), or null (renders).
-    Vec3 trace(const Ray& ray, int depth, int medium, bool primary, Real weight, RayTrace* rec) const {
+    // `given`: the ray's closest_hit (with cull_of(medium)) when the caller found it
+    // already, else null.
+    Vec3 trace(const Ray& ray, int depth, int medium, bool primary, Real weight, RayTrace* rec,
+               const Hit* given = nullptr, bool given_hit = false) const {
         Hit h;
-        // Culling applies to every ray but those inside a dielectric, and shadow rays
-        // (reference-conventions.md, "Back-face culling"; docs/conventions.md for
-        // which rays count as inside).
-        const bool cull = opt.cull && medium == kNoMedium;
-        const bool hit = closest_hit(s, ray, 0, HUGE_VAL, cull, h);
+        const bool cull = cull_of(medium);
+        bool hit = given_hit;
+        if (given)
+            h = *given;
+        else
+            hit = closest_hit(s, ray, 0, HUGE_VAL, cull, h);
         if (rec) record_ray(*rec, ray, depth, medium, cull, hit, h);
         if (!hit) {
             const Vec3 miss = primary ? s.setup.background : Vec3{};  // spec 3, BackgroundColor
@@ -266,18 +275,36 @@ struct Integrator {
 
 }  // namespace
 
-Vec3 trace_primary(const Scene& scene, const Ray& ray, const TraceOptions& options, TraceCache* cache,
-                   RayTrace* record) {
+namespace {
+// The integrator for camera rays, with the cache sized for the scene's lights.
+Integrator camera_integrator(const Scene& scene, const TraceOptions& options, TraceCache* cache, RayCounts& unused) {
     if (cache && cache->last_occluder.size() != scene.setup.lights.size())
         cache->last_occluder.assign(scene.setup.lights.size(), kNoOccluder);
+    return Integrator{scene, options, cache, cache ? cache->rays : unused};
+}
+}  // namespace
+
+Vec3 trace_primary(const Scene& scene, const Ray& ray, const TraceOptions& options, TraceCache* cache,
+                   RayTrace* record) {
     RayCounts unused;
-    RayCounts& rays = cache ? cache->rays : unused;
-    ++rays.camera;
+    const Integrator it = camera_integrator(scene, options, cache, unused);
+    ++it.rays.camera;
     if (record) {
         record->kind = RayKind::Camera;
         record->weight = 1;
     }
-    return Integrator{scene, options, cache, rays}.trace(ray, 0, kNoMedium, true, 1, record);
+    return it.trace(ray, 0, kNoMedium, true, 1, record);
+}
+
+void trace_primaries(const Scene& scene, const Ray* rays, int n, const TraceOptions& options, TraceCache* cache,
+                     Vec3* radiance) {
+    RayCounts unused;
+    const Integrator it = camera_integrator(scene, options, cache, unused);
+    it.rays.camera += static_cast<uint64_t>(n);
+    Hit hits[kPacket];
+    bool found[kPacket];
+    closest_hits(scene, rays, n, 0, HUGE_VAL, it.cull_of(kNoMedium), hits, found);
+    for (int i = 0; i < n; ++i) radiance[i] = it.trace(rays[i], 0, kNoMedium, true, 1, nullptr, &hits[i], found[i]);
 }
 
 }  // namespace rt
