@@ -193,8 +193,8 @@ struct Checker {
 
     // closest_hits (the packet traversal) against closest_hit, ray by ray, for the
     // rays of one packet: the same answer to the last bit (hit, t, primitive,
-    // leaf-order corners, and a triangle's weights: other shapes have none). Rays from random places make packets whose rays
-    // part at once; neighbouring camera rays, packets that part at silhouettes.
+    // leaf-order corners, and a triangle's weights: other shapes have none). Rays from random places make packets whose
+    // rays part at once; neighbouring camera rays, packets that part at silhouettes.
     void packet(const rt::Ray* rays, int n, Real tmin, Real tmax) {
         for (bool cull : {false, true}) {
             ++queries;
