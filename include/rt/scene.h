@@ -347,7 +347,7 @@ bool closest_hit(const Scene& scene, const Ray& ray, Real tmin, Real tmax, bool 
 // closest_hit for n rays at once (1 <= n <= kPacket), found[i] its result for
 // rays[i], hits[i] its hit: the same answers, for rays that are near each other
 // (camera rays of neighbouring pixels) in less time, each node loaded once for all.
-constexpr int kPacket = 8;
+constexpr int kPacket = 16;
 void closest_hits(const Scene& scene, const Ray* rays, int n, Real tmin, Real tmax, bool cull, Hit* hits, bool* found);
 
 // True when anything lies in (tmin, tmax); never culls (spec 2.9: shadow rays).

@@ -23,6 +23,8 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
     img.rgb.assign(static_cast<size_t>(cam.width) * cam.height * 3, 0);
 
     constexpr int kTile = 16;
+    constexpr int kPacketW = 4, kPacketH = 4;  // pixels of a packet (kPacketW * kPacketH <= kPacket)
+    static_assert(kPacketW * kPacketH <= kPacket && kTile % kPacketW == 0 && kTile % kPacketH == 0);
     const int tiles_x = (cam.width + kTile - 1) / kTile;
     const int tiles_y = (cam.height + kTile - 1) / kTile;
     const int tiles = tiles_x * tiles_y;
@@ -45,27 +47,32 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
         for (int tile; (tile = next.fetch_add(1, std::memory_order_relaxed)) < tiles;) {
             const int x0 = (tile % tiles_x) * kTile, y0 = (tile / tiles_x) * kTile;
             const int x1 = std::min(x0 + kTile, cam.width), y1 = std::min(y0 + kTile, cam.height);
-            // A tile's pixels go to the image a row at a time: a tile row (48 bytes)
-            // shares cache lines with its neighbours', which the other workers render
-            // at the same time.
-            for (int y = y0; y < y1; ++y) {
-                uint8_t row[kTile * 3];
-                // Neighbouring pixels' camera rays traverse the tree as one packet.
-                for (int x = x0; x < x1; x += kPacket) {
-                    const int n = std::min(kPacket, x1 - x);
+            // Neighbouring pixels' camera rays traverse the tree as one packet of
+            // kPacketW x kPacketH pixels.
+            uint8_t pixels[kTile][kTile * 3];
+            for (int y = y0; y < y1; y += kPacketH)
+                for (int x = x0; x < x1; x += kPacketW) {
                     Ray rays_in[kPacket];
+                    int n = 0;
+                    for (int py = y; py < std::min(y + kPacketH, y1); ++py)
+                        for (int px = x; px < std::min(x + kPacketW, x1); ++px) rays_in[n++] = cam.primary_ray(px, py);
                     Vec3 c[kPacket];
-                    for (int i = 0; i < n; ++i) rays_in[i] = cam.primary_ray(x + i, y);
                     trace_primaries(scene, rays_in, n, topt, &cache, c);
-                    for (int i = 0; i < n; ++i) {
-                        uint8_t* px = &row[(x + i - x0) * 3];
-                        px[0] = quantize(c[i].x, options.rounding);
-                        px[1] = quantize(c[i].y, options.rounding);
-                        px[2] = quantize(c[i].z, options.rounding);
-                    }
+                    n = 0;
+                    for (int py = y; py < std::min(y + kPacketH, y1); ++py)
+                        for (int px = x; px < std::min(x + kPacketW, x1); ++px, ++n) {
+                            uint8_t* rgb = &pixels[py - y0][(px - x0) * 3];
+                            rgb[0] = quantize(c[n].x, options.rounding);
+                            rgb[1] = quantize(c[n].y, options.rounding);
+                            rgb[2] = quantize(c[n].z, options.rounding);
+                        }
                 }
-                std::copy(row, row + (x1 - x0) * 3, &img.rgb[(static_cast<size_t>(y) * cam.width + x0) * 3]);
-            }
+            // The tile goes to the image a row at a time: a tile row (48 bytes) shares
+            // cache lines with its neighbours', which the other workers render at the
+            // same time.
+            for (int y = y0; y < y1; ++y)
+                std::copy(pixels[y - y0], pixels[y - y0] + (x1 - x0) * 3,
+                          &img.rgb[(static_cast<size_t>(y) * cam.width + x0) * 3]);
             if (watch) done.fetch_add(1, std::memory_order_relaxed);
         }
         rays[static_cast<size_t>(worker)] = cache.rays;
