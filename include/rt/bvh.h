@@ -6,8 +6,9 @@
 // Embree's 8-wide nodes do (docs/speed.md). Bounds are stored as float,
 // rounded outwards, so every box contains its primitives exactly even when
 // Real is double; the box test itself runs in Real (traverse.cpp). Leaves hold
-// up to kDefaultMaxLeaf primitives, tested kLeafBlock at a time with AVX2 (four doubles or eight
-// floats), and the SAH prices them that way (BvhBuildOptions::block).
+// up to kDefaultMaxLeaf primitives, tested kLeafBlock at a time (one SIMD register: four doubles
+// with AVX2, eight with AVX-512, eight floats), and the SAH prices them that way
+// (BvhBuildOptions::block).
 #pragma once
 #include <algorithm>
 #include <cmath>
@@ -132,8 +133,9 @@ private:
     size_t bytes_ = 0;  // allocated
 };
 
-// Primitives a leaf tests at once (traverse.cpp): one AVX2 register of Real
-// lanes, four triangles in double and eight in float; one without AVX2.
+// Primitives a leaf tests at once (traverse.cpp): one SIMD register of Real
+// lanes, four triangles in double with AVX2 and eight with AVX-512, eight in
+// float; one without AVX2.
 #if defined(__AVX512F__)
 inline constexpr uint32_t kLeafBlock = 8;
 #elif defined(__AVX2__)

@@ -1,4 +1,5 @@
-// BVH traversal: closest hit (near child first, fixed stack) and any hit.
+// BVH traversal: closest hit (near child first, fixed stack), for one ray or a
+// packet of neighbouring rays, and any hit.
 // A node's eight child boxes are tested at once against float bounds rounded
 // outwards: in double for double rays (AVX-512 when the compiler targets it, else
 // two AVX halves, scalar otherwise), in float, conservatively widened, for float
@@ -336,8 +337,8 @@ inline bool hit_prim(const Scene& s, const RayPre& p, uint32_t id, Real tmin, Re
 }
 
 #if defined(__AVX2__)
-// Leaves test their triangles kLeafBlock at a time, one AVX2 register of Real
-// lanes (four doubles or eight floats): the edge stage of the watertight test
+// Leaves test their triangles kLeafBlock at a time, one register of Real lanes
+// (four doubles with AVX2, eight with AVX-512, eight floats): the edge stage of the watertight test
 // (triangle_edges) with the same operations lane by lane, so the same bits as one
 // at a time. The loads of all the block's triangles and vertices are issued
 // together instead of each waiting behind the previous triangle's branches; the
