@@ -1251,7 +1251,8 @@ void check_official(const std::string& rel, int rays, size_t min_triangles) {
         ck.closest(r, 0, HUGE_VAL);
         ck.collect(r);
         if (k % 3 == 0) {
-            // The camera rays of the pixel and the next seven in its row, as the renderer's packets.
+            // The camera rays of the pixel and the next ones in its row (up to kPacket): a
+            // coherent packet, as the renderer's 4 x 4 ones are.
             const rt::Camera& cam = s.setup.cameras[0];
             const int x = static_cast<int>(pick(rng, size_t(cam.width))),
                       y = static_cast<int>(pick(rng, size_t(cam.height)));
