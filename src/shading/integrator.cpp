@@ -133,24 +133,23 @@ struct Integrator {
     // including a mirror's or conductor's reflection met inside the glass, is not.
     // `weight` is what this ray's radiance is multiplied by in the pixel. `rec`: this
     // ray's node of the recorded tree (its kind, factor and weight set), or null (renders).
-    // `given`: the ray's closest_hit (with cull_of(medium)) when the caller found it
-    // already, else null.
-    Vec3 trace(const Ray& ray, int depth, int medium, bool primary, Real weight, RayTrace* rec,
-               const Hit* given = nullptr, bool given_hit = false) const {
+    Vec3 trace(const Ray& ray, int depth, int medium, bool primary, Real weight, RayTrace* rec) const {
         Hit h;
         const bool cull = cull_of(medium);
-        bool hit = given_hit;
-        if (given)
-            h = *given;
-        else
-            hit = closest_hit(s, ray, 0, HUGE_VAL, cull, h);
+        const bool hit = closest_hit(s, ray, 0, HUGE_VAL, cull, h);
         if (rec) record_ray(*rec, ray, depth, medium, cull, hit, h);
-        if (!hit) {
-            const Vec3 miss = primary ? s.setup.background : Vec3{};  // spec 3, BackgroundColor
-            if (rec) rec->radiance = miss;
-            return miss;
-        }
+        return hit ? shade(ray, h, depth, medium, weight, rec) : missed(primary, rec);
+    }
 
+    // The radiance of a ray that hits nothing.
+    Vec3 missed(bool primary, RayTrace* rec) const {
+        const Vec3 miss = primary ? s.setup.background : Vec3{};  // spec 3, BackgroundColor
+        if (rec) rec->radiance = miss;
+        return miss;
+    }
+
+    // The radiance of a ray (as trace()) that hits h.
+    Vec3 shade(const Ray& ray, const Hit& h, int depth, int medium, Real weight, RayTrace* rec) const {
         const Vec3 p = ray.org + ray.dir * h.t;
         const Surface surf = s.geometry.surface(h, p);
         const Vec3 ng = surf.ng, ns = surf.ns;
@@ -304,7 +303,8 @@ void trace_primaries(const Scene& scene, const Ray* rays, int n, const TraceOpti
     Hit hits[kPacket];
     bool found[kPacket];
     closest_hits(scene, rays, n, 0, HUGE_VAL, it.cull_of(kNoMedium), hits, found);
-    for (int i = 0; i < n; ++i) radiance[i] = it.trace(rays[i], 0, kNoMedium, true, 1, nullptr, &hits[i], found[i]);
+    for (int i = 0; i < n; ++i)
+        radiance[i] = found[i] ? it.shade(rays[i], hits[i], 0, kNoMedium, 1, nullptr) : it.missed(true, nullptr);
 }
 
 }  // namespace rt
