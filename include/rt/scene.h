@@ -221,6 +221,14 @@ struct Geometry {
         return {c[0], c[h.stride], c[2 * size_t(h.stride)]};
     }
 
+    // Starts loading what surface(h, p) reads from memory (a smooth triangle's vertex
+    // normals), for a caller that shades several hits: their loads overlap.
+    void prefetch_surface(const Hit& h) const {
+        if (h.kind != ShapeKind::Triangle || !run_of(h.index).smooth) return;
+        const Triangle& tri = triangles[h.index];
+        for (int k = 0; k < 3; ++k) __builtin_prefetch(&vertex_normals[tri.v[k]]);
+    }
+
     // The surface at hit point p of `h`.
     Surface surface(const Hit& h, Vec3 p) const {
         switch (h.kind) {

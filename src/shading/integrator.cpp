@@ -304,6 +304,8 @@ void trace_primaries(const Scene& scene, const Ray* rays, int n, const TraceOpti
     bool found[kPacket];
     closest_hits(scene, rays, n, 0, HUGE_VAL, it.cull_of(kNoMedium), hits, found);
     for (int i = 0; i < n; ++i)
+        if (found[i]) scene.geometry.prefetch_surface(hits[i]);
+    for (int i = 0; i < n; ++i)
         radiance[i] = found[i] ? it.shade(rays[i], hits[i], 0, kNoMedium, 1, nullptr) : it.missed(true, nullptr);
 }
 
