@@ -1252,13 +1252,17 @@ void check_official(const std::string& rel, int rays, size_t min_triangles) {
         ck.collect(r);
         if (k % 3 == 0) {
             // The camera rays of the pixel and the next ones in its row (up to kPacket): a
-            // coherent packet, as the renderer's 4 x 4 ones are.
+            // coherent packet; and the 4 x 4 pixels from it, the renderer's packet (render.cpp).
             const rt::Camera& cam = s.setup.cameras[0];
             const int x = static_cast<int>(pick(rng, size_t(cam.width))),
                       y = static_cast<int>(pick(rng, size_t(cam.height)));
             rt::Ray row[rt::kPacket];
             int n = 0;
             for (; n < rt::kPacket && x + n < cam.width; ++n) row[n] = cam.primary_ray(x + n, y);
+            ck.packet(row, n, 0, HUGE_VAL);
+            n = 0;
+            for (int py = y; py < std::min(y + 4, cam.height); ++py)
+                for (int px = x; px < std::min(x + 4, cam.width); ++px) row[n++] = cam.primary_ray(px, py);
             ck.packet(row, n, 0, HUGE_VAL);
         }
         ck.any(r, 0, HUGE_VAL);

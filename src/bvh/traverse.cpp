@@ -577,10 +577,12 @@ inline void prefetch_links(const Bvh& bvh, int32_t child) {
     if (child >= 0) __builtin_prefetch(&bvh.nodes[child].child);
 }
 
+// A child to visit: on the closest-hit traversals' stacks, and the one they visit next.
 struct StackEntry {
     int32_t child;   // node index, or ~first for a leaf
     uint16_t count;  // leaf size
-    BoxReal t;       // entry distance, to skip entries beyond the best hit
+    uint16_t rays;   // packet traversal only: the rays that entered it (bit r: ray r)
+    BoxReal t;       // entry distance (a packet's: the least of its rays'), to skip entries beyond the best hit
 };
 
 // The closest-hit search of one ray: its best hit so far and the limits that
@@ -692,7 +694,7 @@ bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
         int sp = 0;
         // The nearest hit child is visited next without a trip through the stack;
         // the others are pushed far to near.
-        StackEntry e{0, 0, BoxReal(tmin)};
+        StackEntry e{0, 0, 0, BoxReal(tmin)};
         for (;;) {
             if (e.child < 0) {
                 q.test_leaf_at(~static_cast<uint32_t>(e.child), e.count);
@@ -704,11 +706,11 @@ bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
                 if (k > 0) {
                     for (int j = 0; j + 1 < k; ++j) {
                         const int i = order[j];
-                        stack[sp++] = {n.child[i], n.count[i], t[i]};
+                        stack[sp++] = {n.child[i], n.count[i], 0, t[i]};
                         prefetch_node(s.accel.bvh, n.child[i]);
                     }
                     const int i = order[k - 1];
-                    e = {n.child[i], n.count[i], t[i]};
+                    e = {n.child[i], n.count[i], 0, t[i]};
                     continue;
                 }
             }
@@ -726,21 +728,14 @@ bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
 // only the children its own test enters and tests only those leaves, so its hit is
 // the one closest() finds; the packet visits a child when any of its rays enters it,
 // nearest first by the least entry distance among them.
-struct PacketEntry {
-    int32_t child;   // node index, or ~first for a leaf
-    uint16_t count;  // leaf size
-    uint16_t rays;   // the rays that entered it (bit r: ray r)
-    BoxReal t;       // the least entry distance among them
-};
-
 template <bool kCull>
 void closest_packet(const Scene& s, const Ray* rays, int n_rays, Real tmin, Real tmax, Hit* hits, bool* found) {
     ClosestSearch<kCull> q[kPacket];
     for (int r = 0; r < n_rays; ++r) q[r].start(s, rays[r], tmin, tmax);
     if (!s.accel.bvh.nodes.empty()) {
-        PacketEntry stack[kStackSize];
+        StackEntry stack[kStackSize];
         int sp = 0;
-        PacketEntry e{0, 0, static_cast<uint16_t>((1u << n_rays) - 1), BoxReal(tmin)};
+        StackEntry e{0, 0, static_cast<uint16_t>((1u << n_rays) - 1), BoxReal(tmin)};
         for (;;) {
             if (e.child < 0) {
                 for (unsigned m = e.rays; m; m &= m - 1)
@@ -748,7 +743,7 @@ void closest_packet(const Scene& s, const Ray* rays, int n_rays, Real tmin, Real
             } else {
                 const BvhNode& n = s.accel.bvh.nodes[e.child];
                 unsigned child_rays[kWidth] = {};
-                alignas(kBoxesAlign) BoxReal tc[kWidth];
+                BoxReal tc[kWidth];
                 int any = 0;
                 for (unsigned m = e.rays; m; m &= m - 1) {
                     const int r = __builtin_ctz(m);
