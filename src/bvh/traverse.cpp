@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <type_traits>
 
@@ -569,13 +570,16 @@ inline void prefetch_node(const Bvh& bvh, int32_t child) {
     for (int line = 0; line < int(sizeof(BvhNode)); line += 64) __builtin_prefetch(p + line);
 }
 
-// Starts loading the line of a node the traversal visits next that holds its child
-// links (BvhNode::child, count): the box test loads the boxes at once, while the links'
-// load would wait for the box test's answer. Used by the packet and any-hit
-// traversals; in closest() it measured slower (docs/speed.md).
-inline void prefetch_links(const Bvh& bvh, int32_t child) {
-    if (child >= 0) __builtin_prefetch(&bvh.nodes[child].child);
-}
+// A node's child links, copied before its box test: the copy's load is issued with
+// the boxes' loads instead of waiting for the test's answer to pick a child.
+struct NodeLinks {
+    alignas(32) int32_t child[kWidth];
+    alignas(16) uint16_t count[kWidth];
+    explicit NodeLinks(const BvhNode& n) {
+        std::memcpy(child, n.child, sizeof child);
+        std::memcpy(count, n.count, sizeof count);
+    }
+};
 
 // A child to visit: on the closest-hit traversals' stacks, and the one they visit next.
 struct StackEntry {
@@ -700,17 +704,18 @@ bool closest(const Scene& s, const Ray& ray, Real tmin, Real tmax, Hit& hit) {
                 q.test_leaf_at(~static_cast<uint32_t>(e.child), e.count);
             } else {
                 const BvhNode& n = s.accel.bvh.nodes[e.child];
+                const NodeLinks links(n);
                 alignas(kBoxesAlign) BoxReal t[kWidth];
                 int order[kWidth];
                 const int k = order_far_to_near(q.test_node(n, t), t, order);
                 if (k > 0) {
                     for (int j = 0; j + 1 < k; ++j) {
                         const int i = order[j];
-                        stack[sp++] = {n.child[i], n.count[i], 0, t[i]};
-                        prefetch_node(s.accel.bvh, n.child[i]);
+                        stack[sp++] = {links.child[i], links.count[i], 0, t[i]};
+                        prefetch_node(s.accel.bvh, links.child[i]);
                     }
                     const int i = order[k - 1];
-                    e = {n.child[i], n.count[i], 0, t[i]};
+                    e = {links.child[i], links.count[i], 0, t[i]};
                     continue;
                 }
             }
@@ -742,6 +747,7 @@ void closest_packet(const Scene& s, const Ray* rays, int n_rays, Real tmin, Real
                     q[__builtin_ctz(m)].test_leaf_at(~static_cast<uint32_t>(e.child), e.count);
             } else {
                 const BvhNode& n = s.accel.bvh.nodes[e.child];
+                const NodeLinks links(n);
                 unsigned child_rays[kWidth] = {};
                 BoxReal tc[kWidth];
                 int any = 0;
@@ -761,12 +767,11 @@ void closest_packet(const Scene& s, const Ray* rays, int n_rays, Real tmin, Real
                 if (k > 0) {
                     for (int j = 0; j + 1 < k; ++j) {
                         const int i = order[j];
-                        stack[sp++] = {n.child[i], n.count[i], static_cast<uint16_t>(child_rays[i]), tc[i]};
-                        prefetch_node(s.accel.bvh, n.child[i]);
+                        stack[sp++] = {links.child[i], links.count[i], static_cast<uint16_t>(child_rays[i]), tc[i]};
+                        prefetch_node(s.accel.bvh, links.child[i]);
                     }
                     const int i = order[k - 1];
-                    e = {n.child[i], n.count[i], static_cast<uint16_t>(child_rays[i]), tc[i]};
-                    prefetch_links(s.accel.bvh, e.child);
+                    e = {links.child[i], links.count[i], static_cast<uint16_t>(child_rays[i]), tc[i]};
                     continue;
                 }
             }
@@ -851,6 +856,7 @@ bool any_hit(const Scene& s, const Ray& ray, Real tmin, Real tmax, uint32_t* occ
                 return true;
         } else {
             const BvhNode& n = s.accel.bvh.nodes[child];
+            const NodeLinks links(n);
             alignas(kBoxesAlign) BoxReal t[kWidth];
             int mask = test_boxes(n, br, BoxReal(tmin), BoxReal(tmax), t);
             if (mask) {
@@ -858,14 +864,13 @@ bool any_hit(const Scene& s, const Ray& ray, Real tmin, Real tmax, uint32_t* occ
                     const int i = __builtin_ctz(mask);
                     mask &= mask - 1;
                     if (!mask) {
-                        child = n.child[i];
-                        count = n.count[i];
-                        prefetch_links(s.accel.bvh, child);
+                        child = links.child[i];
+                        count = links.count[i];
                         break;
                     }
-                    stack[sp] = n.child[i];
-                    counts[sp++] = n.count[i];
-                    prefetch_node(s.accel.bvh, n.child[i]);
+                    stack[sp] = links.child[i];
+                    counts[sp++] = links.count[i];
+                    prefetch_node(s.accel.bvh, links.child[i]);
                 }
                 continue;
             }
