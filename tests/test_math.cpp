@@ -122,16 +122,15 @@ TEST(MathVec3, LengthAndNormalize) {
     expect_vec_near(rt::normalize(Vec3{2, 2, 2}), 0.5773502691896258, 0.5773502691896258, 0.5773502691896258, kTol);
 }
 
-// max_num and min_num stand in for std::fmax and std::fmin (without their libm
-// calls): the same values on ordinary numbers, zeros, subnormals,
-// the largest finite, infinities and NaN (fmax's rule: NaN loses), and on random bits.
-TEST(MathScalar, MaxNumMinNumAgreeWithLibm) {
-    const Real inf = std::numeric_limits<Real>::infinity(), nan = std::numeric_limits<Real>::quiet_NaN();
-    const Real big = std::numeric_limits<Real>::max(), tiny = std::numeric_limits<Real>::denorm_min();
-    std::vector<Real> xs = {0,   -0.0f, 1,   -1,   Real(0.1), tiny, -tiny, std::numeric_limits<Real>::min(),
-                            big, -big,  inf, -inf, nan};
-    std::mt19937_64 rng(795);
-    for (int i = 0; i < 2000; ++i) {
+// Zeros, +-1, 0.1, the least subnormal and normal, the largest finite, infinities, and n
+// Reals of random bits; no NaN.
+std::vector<Real> special_and_random_reals(int n, uint64_t seed) {
+    const Real inf = std::numeric_limits<Real>::infinity(), big = std::numeric_limits<Real>::max();
+    const Real tiny = std::numeric_limits<Real>::denorm_min();
+    std::vector<Real> xs = {0,   -0.0f, 1,   -1,  Real(0.1), tiny, -tiny, std::numeric_limits<Real>::min(),
+                            big, -big,  inf, -inf};
+    std::mt19937_64 rng(seed);
+    for (int i = 0; i < n; ++i) {
         Real x;
         do {
             const uint64_t b = rng();
@@ -139,6 +138,17 @@ TEST(MathScalar, MaxNumMinNumAgreeWithLibm) {
         } while (std::isnan(x));
         xs.push_back(x);
     }
+    return xs;
+}
+
+// max_num and min_num stand in for std::fmax and std::fmin (without their libm
+// calls): the same values on ordinary numbers, zeros, subnormals,
+// the largest finite, infinities and NaN (fmax's rule: NaN loses), and on random bits.
+TEST(MathScalar, MaxNumMinNumAgreeWithLibm) {
+    const Real inf = std::numeric_limits<Real>::infinity(), nan = std::numeric_limits<Real>::quiet_NaN();
+    const Real big = std::numeric_limits<Real>::max();
+    std::vector<Real> xs = special_and_random_reals(2000, 795);
+    xs.push_back(nan);
     auto same = [](Real a, Real b) {
         return (std::isnan(a) && std::isnan(b)) || (a == b && std::signbit(a) == std::signbit(b));
     };
@@ -149,6 +159,15 @@ TEST(MathScalar, MaxNumMinNumAgreeWithLibm) {
             EXPECT_TRUE(same(rt::max_num(a, b), std::fmax(a, b))) << "max_num(" << a << ", " << b << ")";
             EXPECT_TRUE(same(rt::min_num(a, b), std::fmin(a, b))) << "min_num(" << a << ", " << b << ")";
         }
+    }
+}
+
+// next_up stands in for std::nextafter(x, +inf) (without its libm call): the same bits
+// on zeros, subnormals, the largest finite, infinities and random bits (NaN excluded).
+TEST(MathScalar, NextUpAgreesWithLibm) {
+    for (Real x : special_and_random_reals(20000, 13)) {
+        const Real a = rt::next_up(x), b = std::nextafter(x, std::numeric_limits<Real>::infinity());
+        EXPECT_EQ(std::memcmp(&a, &b, sizeof a), 0) << "next_up(" << x << ") = " << a << ", nextafter: " << b;
     }
 }
 

@@ -2,6 +2,10 @@
 // all operations are inline so the hot loops see through them.
 #pragma once
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <type_traits>
 
 #include "rt/real.h"
 
@@ -41,6 +45,19 @@ inline Vec3& operator*=(Vec3& a, Real s) {
 // other one when one is NaN. Equal zeros of opposite signs may give either zero.
 inline Real max_num(Real a, Real b) { return b != b || a > b ? a : b; }
 inline Real min_num(Real a, Real b) { return b != b || a < b ? a : b; }
+
+// std::nextafter(x, +inf) without the libm call: the least Real above x (x not NaN;
+// +inf stays +inf).
+inline Real next_up(Real x) {
+    using Bits = std::conditional_t<sizeof(Real) == sizeof(uint64_t), uint64_t, uint32_t>;
+    if (x == 0) return std::numeric_limits<Real>::denorm_min();
+    if (x == std::numeric_limits<Real>::infinity()) return x;
+    Bits bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    bits += x > 0 ? Bits(1) : ~Bits(0);  // away from zero for positives, towards it for negatives
+    std::memcpy(&x, &bits, sizeof x);
+    return x;
+}
 
 inline Real dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 inline Vec3 cross(Vec3 a, Vec3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }

@@ -608,6 +608,7 @@ struct ClosestSearch {
     // id: their range ends at nextafter(best_t), kept here as best_t changes (a libm
     // call per primitive test cost 3% of render time).
     Real prim_limit = 0;
+    BoxReal box_lim = 0;  // box_limit(), kept here as best_t changes
     const float* best_corners = nullptr;
     uint32_t best_stride = 0;
 
@@ -616,13 +617,15 @@ struct ClosestSearch {
         p = prepare(ray);
         tmin = t0;
         tmax = best_t = prim_limit = t1;
+        box_lim = BoxReal(t1);
         if (!scene.accel.bvh.nodes.empty()) br = box_ray(p, scene.accel.bvh, t0);
     }
     void consider(uint32_t gid, Real t, const float* corners, uint32_t stride) {
         // Ties in t go to the lower id, so the answer does not depend on the BVH.
         if (t < best_t || (t == best_t && gid < best_id)) {
-            if (t != best_t) prim_limit = std::nextafter(t, Real(HUGE_VAL));
+            if (t != best_t) prim_limit = next_up(t);
             best_t = t;
+            box_lim = BoxReal(t * kTieSlack);
             best_id = gid;
             best_corners = corners;
             best_stride = stride;
@@ -638,7 +641,7 @@ struct ClosestSearch {
     // Boxes get more slack: the entry distance of a flat box around a primitive hit at
     // exactly best_t can round a few ulps above it (kTieSlack covers the error of both
     // the slab distances and the triangle's t).
-    BoxReal box_limit() const { return found ? BoxReal(best_t * kTieSlack) : BoxReal(tmax); }
+    BoxReal box_limit() const { return box_lim; }
     int test_node(const BvhNode& n, BoxReal t[kWidth]) const {
         return test_boxes(n, br, BoxReal(tmin), box_limit(), t);
     }
