@@ -598,7 +598,7 @@ struct ClosestSearch {
     const Scene* s = nullptr;
     RayPre p;
     BoxRay br;
-    Real tmin = 0, tmax = 0;
+    Real tmin = 0;
     bool found = false;
     Real best_t = 0;
     uint32_t best_id = ~0u;  // primitive id (Geometry::shape_of)
@@ -616,7 +616,7 @@ struct ClosestSearch {
         s = &scene;
         p = prepare(ray);
         tmin = t0;
-        tmax = best_t = prim_limit = t1;
+        best_t = prim_limit = t1;
         box_lim = BoxReal(t1);
         if (!scene.accel.bvh.nodes.empty()) br = box_ray(p, scene.accel.bvh, t0);
     }
