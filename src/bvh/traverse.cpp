@@ -605,8 +605,8 @@ struct ClosestSearch {
     Real w[3] = {0, 0, 0};   // the last primitive test's weights; spheres leave them untouched
     Real best_w[3] = {0, 0, 0};
     // Primitive tests accept t <= best_t, so ties reach consider() and are settled by
-    // id: their range ends at nextafter(best_t), kept here as best_t changes (a libm
-    // call per primitive test cost 3% of render time).
+    // id: their range ends at next_up(best_t), kept here as best_t changes rather than
+    // computed for every primitive test.
     Real prim_limit = 0;
     BoxReal box_lim = 0;  // box_limit(), kept here as best_t changes
     const float* best_corners = nullptr;

@@ -50,7 +50,7 @@ struct Integrator {
     // rays ignore: intersect_triangle's kShadow) is passed over.
     bool nearest_occluder(const Ray& ray, Real tmax, ShapeRef& shape, Real& t) const {
         for (Real from = 0; nearest_unculled(ray, from, tmax, shape, t); from = t)
-            if (any_hit(s, ray, 0, std::nextafter(t, Real(HUGE_VAL)))) return true;
+            if (any_hit(s, ray, 0, next_up(t))) return true;
         return false;
     }
 
