@@ -140,7 +140,7 @@ TEST(Trace, TracedPixelsEqualTheRenderInEveryOfficialScene) {
     EXPECT_GE(traced, 20u * 2 * 12);
 }
 
-TEST(Trace, CommandLineTracePixelEqualsTheWrittenImage) {
+TEST(Trace, CommandLineTracePixelEqualsTheWrittenImageInEveryOfficialScene) {
     const std::vector<std::string> scenes = official_scenes();
     SKIP_WITHOUT_SHARED(scenes);
     std::mt19937 rng(1507);
