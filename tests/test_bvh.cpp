@@ -232,6 +232,7 @@ struct Checker {
         if (!pending.empty()) packet(pending.data(), static_cast<int>(pending.size()), 0, HUGE_VAL);
         pending.clear();
         next_packet = next_packet % rt::kPacket + 1;
+        finish_any();
     }
 
     void any(const rt::Ray& r, Real tmin, Real tmax) {
@@ -240,6 +241,60 @@ struct Checker {
         if (rt::any_hit(s, r, tmin, tmax) != want)
             fail(describe(r, tmin, tmax) + ": any_hit says " + (want ? "miss" : "hit") + ", brute force says " +
                  (want ? "hit" : "miss"));
+        collect_any({r, tmin, tmax, nullptr});
+    }
+
+    // any_hits (the packet any-hit traversal) against any_hit, query by query, for one
+    // packet of queries. Every other packet's queries share one hint, as the
+    // integrator's shadow rays towards one light do: absent at first (kNoOccluder) or a
+    // random primitive, then whatever the traversal writes into it.
+    uint32_t shared_hint = rt::kNoOccluder;
+    int any_packets = 0;
+    void any_packet(rt::ShadowQuery* q, int n, Rng& rng) {
+        ++queries;
+        const size_t prims = s.accel.bvh.prims.size();
+        shared_hint = (prims == 0 || pick(rng, 2)) ? rt::kNoOccluder : static_cast<uint32_t>(pick(rng, prims));
+        const bool hinted = ++any_packets % 2 == 0;
+        for (int i = 0; i < n; ++i) q[i].occluder = hinted ? &shared_hint : nullptr;
+        bool got[rt::kPacket];
+        rt::any_hits(s, q, n, got);
+        for (int i = 0; i < n; ++i) {
+            const bool want = rt::any_hit(s, q[i].ray, q[i].tmin, q[i].tmax);
+            if (got[i] != want)
+                fail(describe(q[i].ray, q[i].tmin, q[i].tmax) + ", query " + std::to_string(i) + " of a packet of " +
+                     std::to_string(n) + (hinted ? " (hinted)" : "") + ": any_hits says " + (got[i] ? "hit" : "miss") +
+                     ", any_hit " + (want ? "hit" : "miss"));
+        }
+    }
+
+    // The shadow rays of the closest hits of `rays` (a camera packet) towards `light`,
+    // from just off each hit point: one packet for any_packet.
+    void shadow_packet(const rt::Ray* rays, int n, Vec3 light, Rng& rng) {
+        rt::ShadowQuery q[rt::kPacket];
+        int m = 0;
+        for (int i = 0; i < n; ++i) {
+            rt::Hit h;
+            if (!rt::closest_hit(s, rays[i], 0, HUGE_VAL, false, h)) continue;
+            const Vec3 p = rays[i].org + rays[i].dir * h.t;
+            const Real d = rt::length(light - p);
+            if (d > 0) q[m++] = {{p, (light - p) / d}, Real(1e-4) * d, d, nullptr};
+        }
+        any_packet(q, m, rng);
+    }
+
+    // any() queries are also collected into packets of 1, 2, .. kPacket queries in turn
+    // (pending_any), checked by any_packet(); finish() checks the last one.
+    std::vector<rt::ShadowQuery> pending_any = {};
+    int next_any_packet = 1;
+    Rng any_rng{4242};
+    void collect_any(const rt::ShadowQuery& q) {
+        pending_any.push_back(q);
+        if (static_cast<int>(pending_any.size()) == next_any_packet) finish_any();
+    }
+    void finish_any() {
+        if (!pending_any.empty()) any_packet(pending_any.data(), static_cast<int>(pending_any.size()), any_rng);
+        pending_any.clear();
+        next_any_packet = next_any_packet % rt::kPacket + 1;
     }
 };
 
@@ -1264,6 +1319,7 @@ void check_official(const std::string& rel, int rays, size_t min_triangles) {
             for (int py = y; py < std::min(y + 4, cam.height); ++py)
                 for (int px = x; px < std::min(x + 4, cam.width); ++px) row[n++] = cam.primary_ray(px, py);
             ck.packet(row, n, 0, HUGE_VAL);
+            for (const rt::PointLight& light : s.setup.lights) ck.shadow_packet(row, n, light.position, rng);
         }
         ck.any(r, 0, HUGE_VAL);
         const Real span = rt::length(size);

@@ -366,6 +366,17 @@ void closest_hits(const Scene& scene, const Ray* rays, int n, Real tmin, Real tm
 constexpr uint32_t kNoOccluder = ~0u;
 bool any_hit(const Scene& scene, const Ray& ray, Real tmin, Real tmax, uint32_t* occluder = nullptr);
 
+// any_hit for n queries at once (0 <= n <= kPacket), hit[i] the answer for
+// queries[i]: the same answers, for rays that are near each other (the shadow rays
+// of a camera packet's points towards one light) in less time, each node loaded
+// once for all.
+struct ShadowQuery {
+    Ray ray;
+    Real tmin, tmax;
+    uint32_t* occluder;  // any_hit's hint, or null
+};
+void any_hits(const Scene& scene, const ShadowQuery* queries, int n, bool* hit);
+
 // Float bounds, rounded outwards, of every bounded primitive (the BVH's ids).
 UninitVector<BuildBox> primitive_boxes(const Geometry& g);
 

@@ -827,20 +827,38 @@ void closest_hits(const Scene& scene, const Ray* rays, int n, Real tmin, Real tm
         closest_packet<false>(scene, rays, n, tmin, tmax, hits, found);
 }
 
-bool any_hit(const Scene& s, const Ray& ray, Real tmin, Real tmax, uint32_t* occluder) {
-    // The unbounded shapes, outside the BVH.
+namespace {
+
+// What any_hit and any_hits decide before the traversal: true when an unbounded
+// shape (outside the BVH) or the hint blocks the ray; else `decided` is false when
+// the tree is to be traversed (p and br set), true when it is empty.
+inline bool any_hit_before_tree(const Scene& s, const Ray& ray, Real tmin, Real tmax, const uint32_t* occluder,
+                                RayPre& p, BoxRay& br, bool& decided) {
+    decided = true;
     for (const Plane& pl : s.geometry.planes) {
         Real t;
         if (intersect_plane(ray, pl.point, pl.normal, tmin, tmax, t)) return true;
     }
     if (s.accel.bvh.nodes.empty()) return false;
-    const RayPre p = prepare(ray);
-    Real w[3];
+    p = prepare(ray);
     if (occluder && *occluder != kNoOccluder) {
-        Real t;
+        Real t, w[3];
         if (hit_prim<false, true>(s, p, *occluder, tmin, tmax, t, w)) return true;
     }
-    const BoxRay br = box_ray(p, s.accel.bvh, tmin);
+    br = box_ray(p, s.accel.bvh, tmin);
+    decided = false;
+    return false;
+}
+
+}  // namespace
+
+bool any_hit(const Scene& s, const Ray& ray, Real tmin, Real tmax, uint32_t* occluder) {
+    RayPre p;
+    BoxRay br;
+    bool decided;
+    const bool blocked = any_hit_before_tree(s, ray, tmin, tmax, occluder, p, br, decided);
+    if (decided) return blocked;
+    Real w[3];
     int32_t stack[kStackSize];
     uint16_t counts[kStackSize];
     int sp = 0;
@@ -882,6 +900,88 @@ bool any_hit(const Scene& s, const Ray& ray, Real tmin, Real tmax, uint32_t* occ
         --sp;
         child = stack[sp];
         count = counts[sp];
+    }
+}
+
+// The packet traversal of any_hit: the queries' rays walk the tree together, each
+// node and leaf loaded once for all of them. Each ray tests a node's boxes itself and
+// enters only the children its own test enters, and a ray leaves the packet once it
+// is blocked, so each answer is any_hit's. Children are visited in any_hit's order.
+void any_hits(const Scene& s, const ShadowQuery* queries, int n, bool* hit) {
+    if (n == 1) {
+        hit[0] = any_hit(s, queries[0].ray, queries[0].tmin, queries[0].tmax, queries[0].occluder);
+        return;
+    }
+    RayPre p[kPacket];
+    BoxRay br[kPacket];
+    unsigned live = 0;  // bit r: query r is still open
+    for (int r = 0; r < n; ++r) {
+        const ShadowQuery& q = queries[r];
+        bool decided;
+        hit[r] = any_hit_before_tree(s, q.ray, q.tmin, q.tmax, q.occluder, p[r], br[r], decided);
+        if (!decided) live |= 1u << r;
+    }
+    if (!live) return;
+    struct Entry {
+        int32_t child;
+        uint16_t count;
+        uint16_t rays;  // the rays that entered it (bit r: query r)
+    };
+    Entry stack[kStackSize];
+    int sp = 0;
+    Entry e{0, 0, static_cast<uint16_t>(live)};
+    for (;;) {
+        if (e.child < 0) {
+            const uint32_t first = ~static_cast<uint32_t>(e.child);
+            for (unsigned m = e.rays; m; m &= m - 1) {
+                const int r = __builtin_ctz(m);
+                const ShadowQuery& q = queries[r];
+                Real w[3];
+                if (test_leaf<false, true>(
+                        s, p[r], first, e.count, q.tmin, [&q] { return q.tmax; }, w,
+                        [&q](uint32_t id, Real, const float*) {
+                            if (q.occluder) *q.occluder = id;
+                            return true;
+                        })) {
+                    hit[r] = true;
+                    live &= ~(1u << r);
+                }
+            }
+            if (!live) return;
+        } else {
+            const BvhNode& node = s.accel.bvh.nodes[e.child];
+            const NodeLinks links(node);
+            unsigned child_rays[kWidth] = {};
+            int any = 0;
+            for (unsigned m = e.rays; m; m &= m - 1) {
+                const int r = __builtin_ctz(m);
+                alignas(kBoxesAlign) BoxReal t[kWidth];
+                const int mask = test_boxes(node, br[r], BoxReal(queries[r].tmin), BoxReal(queries[r].tmax), t);
+                for (int h = mask; h; h &= h - 1) child_rays[__builtin_ctz(h)] |= 1u << r;
+                any |= mask;
+            }
+            if (any) {
+                for (;;) {
+                    const int i = __builtin_ctz(any);
+                    any &= any - 1;
+                    const Entry c{links.child[i], links.count[i], static_cast<uint16_t>(child_rays[i])};
+                    if (!any) {
+                        e = c;
+                        break;
+                    }
+                    stack[sp++] = c;
+                    prefetch_node(s.accel.bvh, c.child);
+                }
+                continue;
+            }
+        }
+        // Next from the stack, with the rays not blocked since it was pushed.
+        e.rays = 0;
+        while (!e.rays && sp > 0) {
+            e = stack[--sp];
+            e.rays &= live;
+        }
+        if (!e.rays) return;
     }
 }
 

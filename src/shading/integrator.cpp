@@ -25,6 +25,15 @@ constexpr Real kMinWeight = Real(1e-4);
 inline Real max_component(Vec3 v) { return max_num(v.x, max_num(v.y, v.z)); }
 inline Real max_abs(Vec3 v) { return max_num(std::fabs(v.x), max_num(std::fabs(v.y), std::fabs(v.z))); }
 
+// The point a ray hit, its surface, and how the ray meets it.
+struct HitPoint {
+    Vec3 p;
+    Surface surf;
+    bool front = false;  // hit from the side the geometric normal faces
+    Vec3 nf;             // shading normal facing the incoming ray
+    bool lit = false;    // shaded by the lights (not a dielectric hit from inside)
+};
+
 struct Integrator {
     const Scene& s;
     TraceOptions opt;
@@ -54,76 +63,142 @@ struct Integrator {
         return false;
     }
 
-    // Ambient + Blinn-Phong diffuse and specular from every unshadowed point light.
-    // `n` is the outward shading normal, also for surfaces hit from behind. `rec`: the
-    // recorded tree's node, or null (renders).
-    Vec3 local(const Material& m, Vec3 p, Vec3 n, Vec3 to_eye, RayTrace* rec) const {
+    // Ambient + Blinn-Phong diffuse and specular from every unshadowed point light,
+    // into out[i] for each point pts[i] (i < n <= N) that the lights shade
+    // (HitPoint::lit), seen along incoming[i]. The shadow rays of all the points
+    // towards one light are traced together (any_hits); each point adds its lights in
+    // the scene's order. Every shadow ray first tests the light's last occluder
+    // (TraceCache), whichever point's ray found it. `rec`: the recorded tree's node
+    // when n is 1, or null (renders). N: the capacity of the arrays, kPacket or 1 (a
+    // secondary ray's point writes no packet's worth of them).
+    template <int N>
+    void local(const HitPoint* pts, const Ray* incoming, int n, Vec3* out, RayTrace* rec) const {
         const SceneSetup& setup = s.setup;
-        Vec3 c = m.ambient * setup.ambient_light;
-        if (rec) rec->ambient = c;
+        for (int i = 0; i < n; ++i)
+            if (pts[i].lit) out[i] = setup.materials[pts[i].surf.material].ambient * setup.ambient_light;
+        if (rec) rec->ambient = out[0];
         for (size_t li = 0; li < setup.lights.size(); ++li) {
-            const PointLight& light = setup.lights[li];
-            const Vec3 to_light = light.position - p;
-            const Real d2 = dot(to_light, to_light);
-            const Vec3 l = to_light / std::sqrt(d2);
-            const Real ndotl = dot(n, l);
-            LightTrace* lt = nullptr;
-            if (rec) {
-                lt = &rec->lights.emplace_back();
-                lt->light = li;
-                lt->ndotl = ndotl;
-            }
-            // Nothing to add: diffuse is max(0, n.l) and the specular term is
-            // dropped when n.l <= 0 (reference-conventions.md, "Shading"). n.l
-            // within the rounding error of p counts as 0: a light lying in the
-            // surface's plane would otherwise switch the specular term on and off
-            // from pixel to pixel (its irradiance is huge that close).
-            const Real noise =
-                8 * std::numeric_limits<Real>::epsilon() * (max_abs(p) + max_abs(light.position)) / std::sqrt(d2);
-            if (!(ndotl > noise)) continue;
-            if (lt) lt->facing = true;
-            // Shadow ray from p + n * ShadowRayEpsilon (spec 3), never culled. It
-            // stops eps short of the light, so a light lying on a surface is not
-            // hidden by that surface at random. It starts at t = 0: the references
-            // count occluders right at the offset origin (ignoring those within eps,
-            // tower_smooth goes from 16 to 461 pixels off).
-            const Real eps = setup.shadow_ray_epsilon;
-            const Vec3 so = p + n * eps;
-            const Vec3 so_to_light = light.position - so;
-            const Real dist = length(so_to_light);
-            uint32_t* hint = cache ? &cache->last_occluder[li] : nullptr;
-            if (dist > 2 * eps) {  // a light within 2 eps of the point is never occluded
-                ++rays.shadow;
-                if (lt) {
-                    lt->shadow_traced = true;
-                    lt->shadow = Ray{so, so_to_light / dist};
-                    lt->shadow_tmax = dist - eps;
-                }
-                if (any_hit(s, Ray{so, so_to_light / dist}, 0, dist - eps, hint)) {
+            LightTerm terms[N];
+            ShadowQuery queries[N];
+            int n_queries = 0;
+            for (int i = 0; i < n; ++i)
+                if (pts[i].lit)
+                    terms[i] = light_term(li, pts[i].p, pts[i].surf.ns, queries, n_queries,
+                                          rec ? &rec->lights.emplace_back() : nullptr);
+            bool blocked[N];
+            any_hits(s, queries, n_queries, blocked);
+            for (int i = 0; i < n; ++i) {
+                if (!pts[i].lit) continue;
+                const LightTerm& term = terms[i];
+                LightTrace* lt = rec ? &rec->lights.back() : nullptr;
+                if (term.query >= 0 && blocked[term.query]) {
                     if (lt) {
                         lt->shadowed = true;
                         lt->occluder_found =
                             nearest_occluder(lt->shadow, lt->shadow_tmax, lt->occluder, lt->occluder_t);
                     }
-                    continue;
+                } else if (term.facing) {
+                    out[i] +=
+                        light_added(setup.materials[pts[i].surf.material], term, pts[i].surf.ns, -incoming[i].dir, lt);
                 }
             }
-            const Vec3 e = light.intensity / d2;  // irradiance E = I / d^2 (spec 2.8)
-            const Vec3 h = normalize(l + to_eye);
-            const Real ndoth = max_num(Real(0), dot(n, h));
-            const Real lobe = phong_pow(ndoth, m.phong_exponent);
-            const Vec3 added = (m.diffuse * ndotl + m.specular * lobe) * e;
-            c += added;
-            if (lt) {
-                lt->irradiance = e;
-                lt->ndoth = ndoth;
-                lt->diffuse = m.diffuse * ndotl * e;
-                lt->specular = m.specular * lobe * e;
-                lt->added = added;
-            }
         }
-        if (rec) rec->local = c;
-        return c;
+        if (rec) rec->local = out[0];
+    }
+
+    // A light seen from a shaded point: what local() needs of it.
+    struct LightTerm {
+        size_t light = 0;  // index in SceneSetup::lights
+        Vec3 l;            // unit vector to the light
+        Real d2 = 0;       // squared distance
+        Real ndotl = 0;
+        bool facing = false;  // the light may add something (n.l above rounding noise)
+        int query = -1;       // its shadow ray's index in the queries, or -1 (none traced)
+    };
+
+    // Light li at point p with outward shading normal n: its term, and its shadow ray
+    // appended to queries[0 .. n_queries) when one is traced. `lt`: the recorded
+    // tree's entry, or null.
+    LightTerm light_term(size_t li, Vec3 p, Vec3 n, ShadowQuery* queries, int& n_queries, LightTrace* lt) const {
+        const SceneSetup& setup = s.setup;
+        const PointLight& light = setup.lights[li];
+        const Vec3 to_light = light.position - p;
+        LightTerm term;
+        term.light = li;
+        term.d2 = dot(to_light, to_light);
+        term.l = to_light / std::sqrt(term.d2);
+        term.ndotl = dot(n, term.l);
+        if (lt) {
+            lt->light = li;
+            lt->ndotl = term.ndotl;
+        }
+        // Nothing to add: diffuse is max(0, n.l) and the specular term is
+        // dropped when n.l <= 0 (reference-conventions.md, "Shading"). n.l
+        // within the rounding error of p counts as 0: a light lying in the
+        // surface's plane would otherwise switch the specular term on and off
+        // from pixel to pixel (its irradiance is huge that close).
+        const Real noise =
+            8 * std::numeric_limits<Real>::epsilon() * (max_abs(p) + max_abs(light.position)) / std::sqrt(term.d2);
+        if (!(term.ndotl > noise)) return term;
+        term.facing = true;
+        if (lt) lt->facing = true;
+        // Shadow ray from p + n * ShadowRayEpsilon (spec 3), never culled. It
+        // stops eps short of the light, so a light lying on a surface is not
+        // hidden by that surface at random. It starts at t = 0: the references
+        // count occluders right at the offset origin (ignoring those within eps,
+        // tower_smooth goes from 16 to 461 pixels off).
+        const Real eps = setup.shadow_ray_epsilon;
+        const Vec3 so = p + n * eps;
+        const Vec3 so_to_light = light.position - so;
+        const Real dist = length(so_to_light);
+        if (!(dist > 2 * eps)) return term;  // a light within 2 eps of the point is never occluded
+        ++rays.shadow;
+        const Ray shadow{so, so_to_light / dist};
+        if (lt) {
+            lt->shadow_traced = true;
+            lt->shadow = shadow;
+            lt->shadow_tmax = dist - eps;
+        }
+        term.query = n_queries;
+        queries[n_queries++] = {shadow, 0, dist - eps, cache ? &cache->last_occluder[li] : nullptr};
+        return term;
+    }
+
+    // Diffuse and specular of an unshadowed light that faces the point (spec 2.8).
+    Vec3 light_added(const Material& m, const LightTerm& term, Vec3 n, Vec3 to_eye, LightTrace* lt) const {
+        const Vec3 e = s.setup.lights[term.light].intensity / term.d2;  // irradiance E = I / d^2 (spec 2.8)
+        const Vec3 h = normalize(term.l + to_eye);
+        const Real ndoth = max_num(Real(0), dot(n, h));
+        const Real lobe = phong_pow(ndoth, m.phong_exponent);
+        const Vec3 added = (m.diffuse * term.ndotl + m.specular * lobe) * e;
+        if (lt) {
+            lt->irradiance = e;
+            lt->ndoth = ndoth;
+            lt->diffuse = m.diffuse * term.ndotl * e;
+            lt->specular = m.specular * lobe * e;
+            lt->added = added;
+        }
+        return added;
+    }
+
+    // The point a ray hit, its surface and whether the lights shade it.
+    HitPoint hit_point(const Ray& ray, const Hit& h, RayTrace* rec) const {
+        HitPoint hp;
+        hp.p = ray.org + ray.dir * h.t;
+        hp.surf = s.geometry.surface(h, hp.p);
+        hp.front = dot(ray.dir, hp.surf.ng) < 0;
+        hp.nf = hp.front ? hp.surf.ns : -hp.surf.ns;  // shading normal facing the incoming ray
+        // Dielectrics are shaded only when hit from outside (reference-conventions.md).
+        hp.lit = s.setup.materials[hp.surf.material].type != MaterialType::Dielectric || hp.front;
+        if (rec) {
+            rec->point = hp.p;
+            rec->ng = hp.surf.ng;
+            rec->ns = hp.surf.ns;
+            rec->front = hp.front;
+            rec->material = hp.surf.material;
+            rec->shaded = hp.lit;
+        }
+        return hp;
     }
 
     // `medium` is the dielectric material the ray travels inside, or kNoMedium. It is
@@ -150,27 +225,20 @@ struct Integrator {
 
     // The radiance of a ray (as trace()) that hits h.
     Vec3 shade(const Ray& ray, const Hit& h, int depth, int medium, Real weight, RayTrace* rec) const {
-        const Vec3 p = ray.org + ray.dir * h.t;
-        const Surface surf = s.geometry.surface(h, p);
-        const Vec3 ng = surf.ng, ns = surf.ns;
-        const uint32_t mat_id = surf.material;
-        const Material& m = s.setup.materials[mat_id];
-        const bool front = dot(ray.dir, ng) < 0;
-        const Vec3 nf = front ? ns : -ns;  // shading normal facing the incoming ray
-        if (rec) {
-            rec->point = p;
-            rec->ng = ng;
-            rec->ns = ns;
-            rec->front = front;
-            rec->material = mat_id;
-        }
-
+        const HitPoint hp = hit_point(ray, h, rec);
         Vec3 color;
-        // Dielectrics are shaded only when hit from outside (reference-conventions.md).
-        if (m.type != MaterialType::Dielectric || front) {
-            color = local(m, p, ns, -ray.dir, rec);
-            if (rec) rec->shaded = true;
-        }
+        if (hp.lit) local<1>(&hp, &ray, 1, &color, rec);
+        return bounce(ray, h, hp, color, depth, medium, weight, rec);
+    }
+
+    // The rest of shade() once the lights' share `color` at the hit point is known:
+    // the secondary rays and Beer's law.
+    Vec3 bounce(const Ray& ray, const Hit& h, const HitPoint& hp, Vec3 color, int depth, int medium, Real weight,
+                RayTrace* rec) const {
+        const Vec3 p = hp.p, nf = hp.nf;
+        const bool front = hp.front;
+        const uint32_t mat_id = hp.surf.material;
+        const Material& m = s.setup.materials[mat_id];
 
         // Beer's law on the segment a dielectric's interface sent inside it, internally
         // reflected ones included (reference-conventions.md, "Materials").
@@ -305,8 +373,15 @@ void trace_primaries(const Scene& scene, const Ray* rays, int n, const TraceOpti
     closest_hits(scene, rays, n, 0, HUGE_VAL, it.cull_of(kNoMedium), hits, found);
     for (int i = 0; i < n; ++i)
         if (found[i]) scene.geometry.prefetch_surface(hits[i]);
+    // The packet's points trace their shadow rays together (Integrator::local).
+    HitPoint pts[kPacket];
     for (int i = 0; i < n; ++i)
-        radiance[i] = found[i] ? it.shade(rays[i], hits[i], 0, kNoMedium, 1, nullptr) : it.missed(true, nullptr);
+        if (found[i]) pts[i] = it.hit_point(rays[i], hits[i], nullptr);
+    Vec3 colors[kPacket];
+    it.local<kPacket>(pts, rays, n, colors, nullptr);
+    for (int i = 0; i < n; ++i)
+        radiance[i] = found[i] ? it.bounce(rays[i], hits[i], pts[i], colors[i], 0, kNoMedium, 1, nullptr)
+                               : it.missed(true, nullptr);
 }
 
 }  // namespace rt
