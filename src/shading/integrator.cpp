@@ -208,7 +208,10 @@ struct Integrator {
     // including a mirror's or conductor's reflection met inside the glass, is not.
     // `weight` is what this ray's radiance is multiplied by in the pixel. `rec`: this
     // ray's node of the recorded tree (its kind, factor and weight set), or null (renders).
-    Vec3 trace(const Ray& ray, int depth, int medium, bool primary, Real weight, RayTrace* rec) const {
+    // trace() and bounce() are inlined into their callers, so that a secondary ray costs
+    // one call (shade()) as before they were split out (docs/speed.md, session 14).
+    [[gnu::always_inline]] Vec3 trace(const Ray& ray, int depth, int medium, bool primary, Real weight,
+                                      RayTrace* rec) const {
         Hit h;
         const bool cull = cull_of(medium);
         const bool hit = closest_hit(s, ray, 0, HUGE_VAL, cull, h);
@@ -233,8 +236,8 @@ struct Integrator {
 
     // The rest of shade() once the lights' share `color` at the hit point is known:
     // the secondary rays and Beer's law.
-    Vec3 bounce(const Ray& ray, const Hit& h, const HitPoint& hp, Vec3 color, int depth, int medium, Real weight,
-                RayTrace* rec) const {
+    [[gnu::always_inline]] Vec3 bounce(const Ray& ray, const Hit& h, const HitPoint& hp, Vec3 color, int depth,
+                                       int medium, Real weight, RayTrace* rec) const {
         const Vec3 p = hp.p, nf = hp.nf;
         const bool front = hp.front;
         const uint32_t mat_id = hp.surf.material;
