@@ -60,7 +60,8 @@ struct alignas(64) TraceCache {
 Vec3 trace_primary(const Scene& scene, const Ray& ray, const TraceOptions& options, TraceCache* cache = nullptr,
                    RayTrace* record = nullptr);
 // trace_primary for n primary rays at once (1 <= n <= kPacket): the same radiance
-// in radiance[0 .. n), their closest hits found by one packet traversal (closest_hits).
+// in radiance[0 .. n), their closest hits found by one packet traversal (closest_hits),
+// and their points' shadow rays towards each light by another (any_hits).
 void trace_primaries(const Scene& scene, const Ray* rays, int n, const TraceOptions& options, TraceCache* cache,
                      Vec3* radiance);
 
