@@ -38,13 +38,15 @@ BUILD := build/$(MARCH)
 # Real = float (-DRT_REAL_FLOAT), every token `rt` renamed rt_float (objects in
 # $(BUILD)/float/src), so that both copies link into one program without a clash. main.cpp
 # picks one copy per run (--precision); nothing else branches on the precision. The only
-# code outside namespace rt is stb's (stb_impl.cpp), compiled once, in the double copy.
+# code outside namespace rt, compiled once, in the double copy: stb's (stb_impl.cpp) and the
+# command-line helpers (namespace rtcli, cli/options.cpp), which do not use Real.
 FLOAT_CPPFLAGS := -DRT_REAL_FLOAT -Drt=rt_float
+ONCE_SRC := src/image/stb_impl.cpp src/cli/options.cpp
 
 # Every src/**/*.cpp is library code except program entry points (main.cpp, *_main.cpp).
 LIB_SRC  := $(filter-out src/main.cpp %_main.cpp,$(shell find src -name '*.cpp' | sort))
 LIB_OBJ  := $(LIB_SRC:%.cpp=$(BUILD)/%.o)
-LIB_FLOAT_OBJ := $(patsubst %.cpp,$(BUILD)/float/%.o,$(filter-out src/image/stb_impl.cpp,$(LIB_SRC)))
+LIB_FLOAT_OBJ := $(patsubst %.cpp,$(BUILD)/float/%.o,$(filter-out $(ONCE_SRC),$(LIB_SRC)))
 # The test programs are built from tests/*.cpp only; subfolders (fuzz targets, benchmarks)
 # have their own rules. The same tests run against each precision's library.
 TEST_SRC := $(sort $(wildcard tests/*.cpp))
@@ -54,7 +56,10 @@ TEST_FLOAT_OBJ := $(TEST_SRC:%.cpp=$(BUILD)/float/%.o)
 # compiles in about 60% of -O3's time, and CI builds four copies (docs/ci.md). The library
 # they test keeps CXXFLAGS. `make TEST_OPT=` compiles the tests with CXXFLAGS alone.
 TEST_OPT ?= -O1
-$(TEST_OBJ) $(TEST_FLOAT_OBJ): override CXXFLAGS += $(TEST_OPT)
+# Each test file starts with tests/test_pch.h (GoogleTest, nlohmann/json), precompiled
+# once per object folder with the test files' own flags (test_pch, below).
+TEST_PCH       := $(BUILD)/pch/test_pch.h
+TEST_FLOAT_PCH := $(BUILD)/float/pch/test_pch.h
 
 .PHONY: all test unit clean
 all: raytracer
@@ -98,6 +103,30 @@ $(BUILD)/%.o: %.cpp $(BUILD)/config
 $(BUILD)/float/%.o: %.cpp $(BUILD)/config
 	@mkdir -p $(dir $@)
 	$(CXX) $(CPPFLAGS) $(FLOAT_CPPFLAGS) $(CXXFLAGS) -c $< -o $@
+
+# test_pch(header, compile command without -c/-o): the test files' precompiled header at
+# <header>.gch, beside a copy of tests/test_pch.h (g++ takes the .gch when the flags match
+# and falls back to the copy otherwise).
+define test_pch
+	@mkdir -p $(dir $(1))
+	cp tests/test_pch.h $(1)
+	$(2) -x c++-header $(1) -o $(1).gch
+endef
+
+# The test files: rules with shorter stems than the two above, so make prefers them.
+$(TEST_PCH).gch: tests/test_pch.h $(BUILD)/config
+	$(call test_pch,$(TEST_PCH),$(CXX) $(CPPFLAGS) $(CXXFLAGS) $(TEST_OPT))
+
+$(TEST_FLOAT_PCH).gch: tests/test_pch.h $(BUILD)/config
+	$(call test_pch,$(TEST_FLOAT_PCH),$(CXX) $(CPPFLAGS) $(FLOAT_CPPFLAGS) $(CXXFLAGS) $(TEST_OPT))
+
+$(BUILD)/tests/%.o: tests/%.cpp $(TEST_PCH).gch $(BUILD)/config
+	@mkdir -p $(dir $@)
+	$(CXX) $(CPPFLAGS) $(CXXFLAGS) $(TEST_OPT) -include $(TEST_PCH) -c $< -o $@
+
+$(BUILD)/float/tests/%.o: tests/%.cpp $(TEST_FLOAT_PCH).gch $(BUILD)/config
+	@mkdir -p $(dir $@)
+	$(CXX) $(CPPFLAGS) $(FLOAT_CPPFLAGS) $(CXXFLAGS) $(TEST_OPT) -include $(TEST_FLOAT_PCH) -c $< -o $@
 
 $(BUILD)/rt_tests: $(TEST_OBJ) $(BUILD)/librt.a $(BUILD)/config
 	$(CXX) $(CXXFLAGS) -o $@ $(filter-out $(BUILD)/config,$^) -lgtest $(LDLIBS)
@@ -155,4 +184,5 @@ endef
 # Further targets (benchmarks, sanitizers, fuzzing, converters) live in mk/*.mk.
 -include $(sort $(wildcard mk/*.mk))
 
--include $(LIB_OBJ:.o=.d) $(LIB_FLOAT_OBJ:.o=.d) $(TEST_OBJ:.o=.d) $(TEST_FLOAT_OBJ:.o=.d) $(BUILD)/src/main.d
+-include $(LIB_OBJ:.o=.d) $(LIB_FLOAT_OBJ:.o=.d) $(TEST_OBJ:.o=.d) $(TEST_FLOAT_OBJ:.o=.d) $(BUILD)/src/main.d \
+         $(TEST_PCH).d $(TEST_FLOAT_PCH).d

@@ -29,7 +29,9 @@ build/check-scene/all_features.json: tests/fuzz/seeds/scene/all_features.json te
 
 # ---- AddressSanitizer + UndefinedBehaviorSanitizer ------------------------------------
 ASAN_DIR      := build/asan
-ASAN_CXXFLAGS := -O1 -g -march=native -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all $(CHECK_WARN)
+# -g1: line tables only, all the sanitizers' reports need (file:line in each frame);
+# full debug information makes each sanitized file much slower to compile (docs/ci.md).
+ASAN_CXXFLAGS := -O1 -g1 -march=native -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all $(CHECK_WARN)
 ASAN_LIB_OBJ  := $(LIB_SRC:%.cpp=$(ASAN_DIR)/%.o)
 ASAN_FLOAT_OBJ := $(LIB_FLOAT_OBJ:$(BUILD)/%=$(ASAN_DIR)/%)
 ASAN_TEST_OBJ := $(TEST_SRC:%.cpp=$(ASAN_DIR)/%.o)
@@ -47,6 +49,13 @@ $(ASAN_DIR)/%.o: %.cpp
 $(ASAN_DIR)/float/%.o: %.cpp
 	@mkdir -p $(dir $@)
 	$(CXX) $(CPPFLAGS) $(FLOAT_CPPFLAGS) $(ASAN_CXXFLAGS) -c $< -o $@
+
+$(ASAN_DIR)/pch/test_pch.h.gch: tests/test_pch.h
+	$(call test_pch,$(ASAN_DIR)/pch/test_pch.h,$(CXX) $(CPPFLAGS) $(ASAN_CXXFLAGS))
+
+$(ASAN_DIR)/tests/%.o: tests/%.cpp $(ASAN_DIR)/pch/test_pch.h.gch
+	@mkdir -p $(dir $@)
+	$(CXX) $(CPPFLAGS) $(ASAN_CXXFLAGS) -include $(ASAN_DIR)/pch/test_pch.h -c $< -o $@
 
 $(ASAN_DIR)/librt.a: $(ASAN_LIB_OBJ)
 	@rm -f $@
@@ -162,6 +171,6 @@ memcheck: $(MEMCHECK_DIR)/raytracer build/check-scene/all_features.json
 	    $(MEMCHECK_DIR)/raytracer --precision float -j 2 -o $(MEMCHECK_DIR)/renders $(MEMCHECK_SCENES)
 	@echo "memcheck: no errors, no leaks"
 
--include $(ASAN_LIB_OBJ:.o=.d) $(ASAN_FLOAT_OBJ:.o=.d) $(ASAN_TEST_OBJ:.o=.d) $(ASAN_DIR)/src/main.d
+-include $(ASAN_LIB_OBJ:.o=.d) $(ASAN_FLOAT_OBJ:.o=.d) $(ASAN_TEST_OBJ:.o=.d) $(ASAN_DIR)/src/main.d $(ASAN_DIR)/pch/test_pch.h.d
 -include $(FUZZ_LIB_OBJ:.o=.d) $(FUZZ_DIR)/tests/fuzz/fuzz_scene.d $(FUZZ_DIR)/tests/fuzz/fuzz_ply.d
 -include $(MEMCHECK_LIB_OBJ:.o=.d) $(MEMCHECK_FLOAT_OBJ:.o=.d) $(MEMCHECK_DIR)/src/main.d

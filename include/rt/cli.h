@@ -13,8 +13,9 @@
 #include <utility>
 #include <vector>
 
-namespace rt {
-namespace cli {
+// Outside namespace rt: nothing here depends on the precision, so one copy (in the double
+// library) serves both, as rt::cli (FLOAT_CPPFLAGS renames namespace rt, not rtcli).
+namespace rtcli {
 
 // A program's fixed texts.
 struct Program {
@@ -101,5 +102,8 @@ int report_usage_error(const Program& p, const std::string& message);
 // --version or a usage error has been printed and this is the exit status.
 std::optional<int> parse(CLI::App& app, const Program& p, int argc, char** argv);
 
-}  // namespace cli
+}  // namespace rtcli
+
+namespace rt {
+namespace cli = ::rtcli;
 }  // namespace rt

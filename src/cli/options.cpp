@@ -9,8 +9,7 @@
 #include <utility>
 #include <vector>
 
-namespace rt {
-namespace cli {
+namespace rtcli {
 
 namespace {
 
@@ -123,5 +122,4 @@ std::optional<int> parse(CLI::App& app, const Program& p, int argc, char** argv)
     }
 }
 
-}  // namespace cli
-}  // namespace rt
+}  // namespace rtcli
