@@ -829,25 +829,27 @@ void closest_hits(const Scene& scene, const Ray* rays, int n, Real tmin, Real tm
 
 namespace {
 
-// What any_hit and any_hits decide before the traversal: true when an unbounded
-// shape (outside the BVH) or the hint blocks the ray; else `decided` is false when
-// the tree is to be traversed (p and br set), true when it is empty.
-inline bool any_hit_before_tree(const Scene& s, const Ray& ray, Real tmin, Real tmax, const uint32_t* occluder,
-                                RayPre& p, BoxRay& br, bool& decided) {
-    decided = true;
+// What any_hit and any_hits know of a shadow ray before the traversal.
+enum class BeforeTree {
+    Blocked,   // by an unbounded shape (outside the BVH) or by the hint
+    Clear,     // and the tree is empty
+    Traverse,  // the tree decides: p and br are set
+};
+
+inline BeforeTree any_hit_before_tree(const Scene& s, const Ray& ray, Real tmin, Real tmax, const uint32_t* occluder,
+                                      RayPre& p, BoxRay& br) {
     for (const Plane& pl : s.geometry.planes) {
         Real t;
-        if (intersect_plane(ray, pl.point, pl.normal, tmin, tmax, t)) return true;
+        if (intersect_plane(ray, pl.point, pl.normal, tmin, tmax, t)) return BeforeTree::Blocked;
     }
-    if (s.accel.bvh.nodes.empty()) return false;
+    if (s.accel.bvh.nodes.empty()) return BeforeTree::Clear;
     p = prepare(ray);
     if (occluder && *occluder != kNoOccluder) {
         Real t, w[3];
-        if (hit_prim<false, true>(s, p, *occluder, tmin, tmax, t, w)) return true;
+        if (hit_prim<false, true>(s, p, *occluder, tmin, tmax, t, w)) return BeforeTree::Blocked;
     }
     br = box_ray(p, s.accel.bvh, tmin);
-    decided = false;
-    return false;
+    return BeforeTree::Traverse;
 }
 
 }  // namespace
@@ -855,9 +857,8 @@ inline bool any_hit_before_tree(const Scene& s, const Ray& ray, Real tmin, Real 
 bool any_hit(const Scene& s, const Ray& ray, Real tmin, Real tmax, uint32_t* occluder) {
     RayPre p;
     BoxRay br;
-    bool decided;
-    const bool blocked = any_hit_before_tree(s, ray, tmin, tmax, occluder, p, br, decided);
-    if (decided) return blocked;
+    const BeforeTree before = any_hit_before_tree(s, ray, tmin, tmax, occluder, p, br);
+    if (before != BeforeTree::Traverse) return before == BeforeTree::Blocked;
     Real w[3];
     int32_t stack[kStackSize];
     uint16_t counts[kStackSize];
@@ -917,9 +918,9 @@ void any_hits(const Scene& s, const ShadowQuery* queries, int n, bool* hit) {
     unsigned live = 0;  // bit r: query r is still open
     for (int r = 0; r < n; ++r) {
         const ShadowQuery& q = queries[r];
-        bool decided;
-        hit[r] = any_hit_before_tree(s, q.ray, q.tmin, q.tmax, q.occluder, p[r], br[r], decided);
-        if (!decided) live |= 1u << r;
+        const BeforeTree before = any_hit_before_tree(s, q.ray, q.tmin, q.tmax, q.occluder, p[r], br[r]);
+        hit[r] = before == BeforeTree::Blocked;
+        if (before == BeforeTree::Traverse) live |= 1u << r;
     }
     if (!live) return;
     struct Entry {
