@@ -322,6 +322,11 @@ TEST(Stats, MeasurementSwitches) {
     EXPECT_EQ(leaf["images"][0]["bvh"]["max_leaf"], 2);
     EXPECT_EQ(leaf["images"][0]["bvh"]["bins"], 8);
     EXPECT_EQ(leaf["images"][0]["bvh"]["split"], "median");
+    // The block the tree was priced with: the chosen one, or block_for's.
+    EXPECT_EQ(leaf["images"][0]["bvh"]["block"], rt::BvhBuildOptions{}.block_for(1));
+    const json block = run_stats({"--bvh-block", "3"}, scene, dir);
+    ASSERT_FALSE(block.is_null());
+    EXPECT_EQ(block["images"][0]["bvh"]["block"], 3);
 
     for (const std::vector<std::string>& bad : std::vector<std::vector<std::string>>{{"--max-depth", "-1"},
                                                                                      {"--epsilon-scale", "0"},
@@ -402,6 +407,26 @@ TEST(Stats, MakeParentFolders) {
 }
 
 // Default build options are the tuned constants: the tree is the same, node for node.
+// The SAH's leaf block: a given one (clamped to 16) whatever the scene; by default a
+// leaf test's lanes, at most four where leaves read the double vertex copy.
+TEST(Stats, LeafBlockFollowsTheVertexCopy) {
+    rt::BvhBuildOptions o;
+    const size_t small = o.double_copy_max, large = o.double_copy_max + 1;
+    constexpr bool kDouble = std::is_same_v<rt::Real, double>;
+    EXPECT_EQ(o.double_copies(small), kDouble);
+    EXPECT_FALSE(o.double_copies(large));
+    EXPECT_EQ(o.block_for(large), rt::kLeafBlock);
+    EXPECT_EQ(o.block_for(small), kDouble ? std::min(rt::kLeafBlock, 4u) : rt::kLeafBlock);
+    o.block = 3;
+    EXPECT_EQ(o.block_for(small), 3u);
+    EXPECT_EQ(o.block_for(large), 3u);
+    o.block = 40;
+    EXPECT_EQ(o.block_for(small), 16u);
+    o.double_copy_max = 0;  // float copies only
+    o.block = 0;
+    EXPECT_EQ(o.block_for(small), rt::kLeafBlock);
+}
+
 TEST(Stats, DefaultBvhOptionsBuildTheSameTree) {
     TempDir dir;
     const rt::SceneDesc d = rt::load_scene(write_scene(dir.path(), 16, 16));
@@ -410,9 +435,10 @@ TEST(Stats, DefaultBvhOptionsBuildTheSameTree) {
     EXPECT_EQ(o.max_leaf, rt::kDefaultMaxLeaf);
     EXPECT_EQ(o.bins, 16);
     EXPECT_FLOAT_EQ(o.traversal_cost, 1.0f);
-    EXPECT_EQ(o.block, rt::kLeafBlock);
+    EXPECT_EQ(o.block, 0u);  // chosen by block_for
     EXPECT_TRUE(o.sah);
     const rt::Scene b = rt::build_scene(d, o);
+    EXPECT_EQ(b.accel.bvh.block, o.block_for(b.accel.bvh.prims.size()));
     ASSERT_EQ(a.accel.bvh.nodes.size(), b.accel.bvh.nodes.size());
     EXPECT_EQ(0, std::memcmp(a.accel.bvh.nodes.begin(), b.accel.bvh.nodes.begin(),
                              a.accel.bvh.nodes.size() * sizeof(rt::BvhNode)));

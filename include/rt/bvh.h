@@ -153,21 +153,36 @@ inline constexpr uint32_t kDefaultMaxLeaf = std::is_same_v<Real, float> ? 16 : 8
 struct BvhBuildOptions {
     uint32_t max_leaf = kDefaultMaxLeaf;  // a leaf never holds more primitives, whatever SAH says (1..1024)
     float traversal_cost = 1;             // SAH cost of one traversal step, relative to one leaf block test
-    uint32_t block = kLeafBlock;  // SAH counts a leaf's triangles in blocks of this many (1..16), others one by one
-    int bins = 16;                // SAH bins per axis for large ranges (2..16; small ranges use fewer)
-    bool sah = true;              // false: object-median splits only (fastest build, slower rays)
-    bool collapse = true;         // false: keep the top-down tree's sparse bottom nodes (bvh_build.cpp)
+    // The SAH counts a leaf's triangles in blocks of this many (1..16), other shapes one by
+    // one; 0: block_for() chooses.
+    uint32_t block = 0;
+    int bins = 16;         // SAH bins per axis for large ranges (2..16; small ranges use fewer)
+    bool sah = true;       // false: object-median splits only (fastest build, slower rays)
+    bool collapse = true;  // false: keep the top-down tree's sparse bottom nodes (bvh_build.cpp)
     // Leaf-order vertices (scene.h, LeafVertices) in double for scenes of up to
     // this many primitives (72 bytes a triangle, at most 9 MiB: a copy that stays
     // in cache), in float above (docs/speed.md); 0: never double. Double builds
     // only: with Real = float the copy is always in float.
     size_t double_copy_max = size_t(1) << 17;
+
+    // Whether leaves of a tree over n primitives read their vertices from the double copy.
+    bool double_copies(size_t n) const { return std::is_same_v<Real, double> && n <= double_copy_max; }
+    // The block the SAH prices leaves in, for n primitives: `block` when set, else as
+    // many triangles as one leaf test takes (kLeafBlock), but at most four where they
+    // come from the double copy: eight doubles a coordinate fill a 64-byte line, twice
+    // the bytes of eight floats, and leaves priced as if they held four made the small
+    // scenes' secondary rays faster (docs/speed.md, session 16).
+    uint32_t block_for(size_t n) const {
+        if (block != 0) return std::min<uint32_t>(block, 16);
+        return double_copies(n) ? std::min<uint32_t>(kLeafBlock, 4) : kLeafBlock;
+    }
 };
 
 struct Bvh {
     NodeArray nodes;              // nodes[0] is the root (absent when there are no primitives)
     std::vector<uint32_t> prims;  // primitive ids in leaf order
     int depth = 0;                // in nodes, root = 1
+    uint32_t block = 0;           // the leaf block the SAH priced leaves in (BvhBuildOptions::block_for)
     float extent = 0;             // largest magnitude of the root's bounds (0 when empty)
 
     // Builds over `boxes[i]` (one box per primitive id i, n of them), sorting them

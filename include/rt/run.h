@@ -38,6 +38,7 @@ struct SceneFigures {
     size_t degenerate = 0;  // triangles skipped at build time
     size_t bvh_nodes = 0;
     int bvh_depth = 0;
+    uint32_t bvh_block = 0;         // the leaf block the SAH priced leaves in (Bvh::block)
     int max_recursion_depth = 0;    // after --max-depth
     double shadow_ray_epsilon = 0;  // after --epsilon-scale
     SceneTimes seconds;

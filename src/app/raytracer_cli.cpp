@@ -83,7 +83,7 @@ int raytracer_cli(int argc, char** argv) {
                     o.bvh.traversal_cost, "a number from 0.1 to 100", [](double f) { return f >= 0.1 && f <= 100; });
     cli::add_whole(app, "--bvh-block", "N",
                    "primitives a leaf block holds in the SAH cost (1..16, default: as many as one leaf test takes, "
-                   "4 with AVX2)",
+                   "at most 4 in double for scenes of up to 2^17 primitives; --stats names it)",
                    o.bvh.block, 1, 16);
     app.add_option("scenes", scenes);
     app.final_callback([&] {

@@ -152,6 +152,7 @@ SceneFigures scene_figures(const Scene& scene, const SceneTimes& seconds) {
     f.degenerate = scene.report.degenerate_triangles;
     f.bvh_nodes = scene.accel.bvh.nodes.size();
     f.bvh_depth = scene.accel.bvh.depth;
+    f.bvh_block = scene.accel.bvh.block;
     f.max_recursion_depth = scene.setup.max_recursion_depth;
     f.shadow_ray_epsilon = double(scene.setup.shadow_ray_epsilon);
     f.seconds = seconds;

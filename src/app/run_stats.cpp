@@ -109,7 +109,7 @@ std::string stats_json(const std::vector<ImageRecord>& images, const std::string
                     {"max_leaf", r.bvh.max_leaf},
                     {"bins", r.bvh.bins},
                     {"traversal_cost", r.bvh.traversal_cost},
-                    {"block", r.bvh.block},
+                    {"block", f.bvh_block},
                     {"split", r.bvh.sah ? "sah" : "median"},
                     {"collapse", r.bvh.collapse}};
         j["peak_rss_bytes"] = r.peak_rss;

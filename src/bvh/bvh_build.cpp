@@ -764,6 +764,7 @@ void Bvh::build(BuildBox* boxes, size_t count, const BvhBuildOptions& options) {
     nodes.clear();
     prims.clear();
     depth = 0;
+    block = 0;
     extent = 0;
     if (count == 0) return;
     const uint32_t n = static_cast<uint32_t>(count);
@@ -777,7 +778,7 @@ void Bvh::build(BuildBox* boxes, size_t count, const BvhBuildOptions& options) {
     BvhBuildOptions opt = options;
     opt.max_leaf = std::min<uint32_t>(std::max<uint32_t>(opt.max_leaf, 1), 1024);  // BvhNode::count is 16 bits
     opt.bins = std::min(std::max(opt.bins, 2), kBins);
-    opt.block = std::min<uint32_t>(std::max<uint32_t>(opt.block, 1), 16);
+    opt.block = block = opt.block_for(n);
     prims.resize(n);
     Builder b{boxes, prims.data(), nodes, next, spare, opt};
     Range root{0, n, {}, {}, false};

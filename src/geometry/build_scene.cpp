@@ -217,7 +217,7 @@ void copy_leaf_vertices(Scene& s, ReusableStorage& storage, const BvhBuildOption
     if (kLeafBlock == 1 || g.triangles.empty()) return;
     Bvh& bvh = s.accel.bvh;
     const size_t n = bvh.prims.size();
-    if (std::is_same_v<Real, double> && n <= options.double_copy_max) {
+    if (options.double_copies(n)) {
         ReusableStorage doubles(LeafVertices::coordinates_for(n) * sizeof(double));
         double* const out = doubles.emplace<double>(LeafVertices::coordinates_for(n));
         if (copy_leaves(g, bvh, out) > 0) s.accel.leaf_vertices = LeafVertices(std::move(doubles), out);
