@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
-#include <cstddef>
 #include <cstring>
 #include <limits>
 #include <type_traits>
@@ -150,28 +149,6 @@ struct F64x8 {
 };
 #endif
 
-// A ray's near and far planes on each axis: lo and hi where its direction's sign bit
-// is clear, hi and lo where it is set, kept as byte offsets into BvhNode so that the
-// box test finds them without a branch (one per axis and node test, often
-// mispredicted: docs/speed.md).
-struct SlabPlanes {
-    int near_at[3], far_at[3];
-    void set(int axis, bool negative) {
-        const int lo = static_cast<int>(offsetof(BvhNode, lo) + axis * sizeof BvhNode::lo[0]);
-        const int hi = static_cast<int>(offsetof(BvhNode, hi) + axis * sizeof BvhNode::hi[0]);
-        near_at[axis] = negative ? hi : lo;
-        far_at[axis] = negative ? lo : hi;
-    }
-    // Lanes h.. of the near and far bounds on `axis`.
-    const float* near(const BvhNode& n, int axis, int h) const { return at(n, near_at[axis]) + h; }
-    const float* far(const BvhNode& n, int axis, int h) const { return at(n, far_at[axis]) + h; }
-
-private:
-    static const float* at(const BvhNode& n, int byte) {
-        return reinterpret_cast<const float*>(reinterpret_cast<const char*>(&n) + byte);
-    }
-};
-
 #if !defined(RT_REAL_FLOAT)
 // Double rays test boxes in double: the float bounds convert exactly.
 using BoxReal = double;
@@ -189,7 +166,7 @@ constexpr double kSlabWiden = 1 + 2 * gamma_bound<double>(3);
 // to it) then falls out of the max/min below and leaves the interval open.
 struct BoxRay {
     double org[3], inv[3];
-    SlabPlanes planes;
+    int near_is_hi[3];
 };
 
 // Double rays are not padded (box_pad, in the float branch below); tmin is unused.
@@ -198,7 +175,7 @@ inline BoxRay box_ray(const RayPre& p, const Bvh&, Real) {
     for (int a = 0; a < 3; ++a) {
         b.org[a] = p.ray.org[a];
         b.inv[a] = 1.0 / double(p.ray.dir[a]);
-        b.planes.set(a, std::signbit(b.inv[a]));
+        b.near_is_hi[a] = std::signbit(b.inv[a]) ? 1 : 0;
     }
     return b;
 }
@@ -211,8 +188,8 @@ inline int test_lanes(const BvhNode& n, const BoxRay& r, double tmin, double tma
     for (int h = 0; h < kWidth; h += O::kLanes) {
         typename O::V tnear = O::set1(tmin), tfar = O::set1(tmax * kSlabWiden);
         for (int a = 0; a < 3; ++a) {
-            const float* nearp = r.planes.near(n, a, h);
-            const float* farp = r.planes.far(n, a, h);
+            const float* nearp = (r.near_is_hi[a] ? n.hi[a] : n.lo[a]) + h;
+            const float* farp = (r.near_is_hi[a] ? n.lo[a] : n.hi[a]) + h;
             const typename O::V o = O::set1(r.org[a]), inv = O::set1(r.inv[a]);
             const typename O::V t0 = O::mul(O::sub(O::load(nearp), o), inv);
             const typename O::V t1 = O::mul(O::sub(O::load(farp), o), inv);
@@ -282,7 +259,7 @@ constexpr float kDirDomain = 0x1p100f;
 // moved by box_pad against the direction, org_far moved with it.
 struct BoxRay {
     float org_near[3], org_far[3], inv_near[3], inv_far[3];
-    SlabPlanes planes;
+    int near_is_hi[3];
 };
 
 // The box ray for rays with tmin >= 0, direction components within kDirDomain and
@@ -297,15 +274,14 @@ inline BoxRay box_ray(const RayPre& p, const Bvh& bvh, Real tmin) {
     bool in_domain = tmin >= 0 && bvh.extent < kBoxDomain;
     for (int a = 0; a < 3; ++a) {
         const float d = p.ray.dir[a], o = p.ray.org[a];
-        const bool negative = std::signbit(d);
-        b.planes.set(a, negative);
+        b.near_is_hi[a] = std::signbit(d) ? 1 : 0;
         // 1/d within a factor 1 + u; a d whose inverse overflows gets FLT_MAX as its
         // lower bound.
         const float inv = 1 / d, shrunk = std::fabs(inv) * (1 - kInvWiden);
         b.inv_near[a] = d == 0 ? inv : std::copysign(shrunk < FLT_MAX ? shrunk : FLT_MAX, d);
         b.inv_far[a] = inv * (1 + kInvWiden);
         // No padding keeps the origin's bits, -0 included.
-        const float out = negative ? -pad : pad;
+        const float out = b.near_is_hi[a] ? -pad : pad;
         b.org_near[a] = pad == 0 ? o : o + out;
         b.org_far[a] = pad == 0 ? o : o - out;
         in_domain = in_domain && std::fabs(d) <= kDirDomain && std::fabs(b.org_near[a]) < kBoxDomain &&
@@ -324,8 +300,8 @@ inline int test_lanes(const BvhNode& n, const BoxRay& r, float tmin, float tmax,
     for (int h = 0; h < kWidth; h += O::kLanes) {
         typename O::V tnear = O::set1(tmin), tfar = O::set1(tmax);
         for (int a = 0; a < 3; ++a) {
-            const float* nearp = r.planes.near(n, a, h);
-            const float* farp = r.planes.far(n, a, h);
+            const float* nearp = (r.near_is_hi[a] ? n.hi[a] : n.lo[a]) + h;
+            const float* farp = (r.near_is_hi[a] ? n.lo[a] : n.hi[a]) + h;
             const typename O::V t0 = O::mul(O::sub(O::load(nearp), O::set1(r.org_near[a])), O::set1(r.inv_near[a]));
             const typename O::V t1 = O::mul(O::sub(O::load(farp), O::set1(r.org_far[a])), O::set1(r.inv_far[a]));
             tnear = O::max(t0, tnear);
