@@ -406,7 +406,6 @@ TEST(Stats, MakeParentFolders) {
     }
 }
 
-// Default build options are the tuned constants: the tree is the same, node for node.
 // The SAH's leaf block: a given one (clamped to 16) whatever the scene; by default a
 // leaf test's lanes, at most four where leaves read the double vertex copy.
 TEST(Stats, LeafBlockFollowsTheVertexCopy) {
@@ -427,6 +426,7 @@ TEST(Stats, LeafBlockFollowsTheVertexCopy) {
     EXPECT_EQ(o.block_for(small), rt::kLeafBlock);
 }
 
+// Default build options are the tuned constants: the tree is the same, node for node.
 TEST(Stats, DefaultBvhOptionsBuildTheSameTree) {
     TempDir dir;
     const rt::SceneDesc d = rt::load_scene(write_scene(dir.path(), 16, 16));
