@@ -267,15 +267,22 @@ struct Checker {
         }
     }
 
-    // The shadow rays of the closest hits of `rays` (a camera packet) towards `light`,
-    // from just off each hit point: one packet for any_packet.
-    void shadow_packet(const rt::Ray* rays, int n, Vec3 light, Rng& rng) {
-        rt::ShadowQuery q[rt::kPacket];
-        int m = 0;
+    // The points where `rays` (a camera packet) first hit the scene, without culling.
+    std::vector<Vec3> hit_points(const rt::Ray* rays, int n) const {
+        std::vector<Vec3> points;
         for (int i = 0; i < n; ++i) {
             rt::Hit h;
-            if (!rt::closest_hit(s, rays[i], 0, HUGE_VAL, false, h)) continue;
-            const Vec3 p = rays[i].org + rays[i].dir * h.t;
+            if (rt::closest_hit(s, rays[i], 0, HUGE_VAL, false, h)) points.push_back(rays[i].org + rays[i].dir * h.t);
+        }
+        return points;
+    }
+
+    // The shadow rays from `points` (at most kPacket) towards `light`, from just off
+    // each point: one packet for any_packet.
+    void shadow_packet(const std::vector<Vec3>& points, Vec3 light, Rng& rng) {
+        rt::ShadowQuery q[rt::kPacket];
+        int m = 0;
+        for (const Vec3& p : points) {
             const Real d = rt::length(light - p);
             if (d > 0) q[m++] = {{p, (light - p) / d}, Real(1e-4) * d, d, nullptr};
         }
@@ -1319,7 +1326,8 @@ void check_official(const std::string& rel, int rays, size_t min_triangles) {
             for (int py = y; py < std::min(y + 4, cam.height); ++py)
                 for (int px = x; px < std::min(x + 4, cam.width); ++px) row[n++] = cam.primary_ray(px, py);
             ck.packet(row, n, 0, HUGE_VAL);
-            for (const rt::PointLight& light : s.setup.lights) ck.shadow_packet(row, n, light.position, rng);
+            const std::vector<Vec3> points = ck.hit_points(row, n);
+            for (const rt::PointLight& light : s.setup.lights) ck.shadow_packet(points, light.position, rng);
         }
         ck.any(r, 0, HUGE_VAL);
         const Real span = rt::length(size);
