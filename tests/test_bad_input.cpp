@@ -269,7 +269,8 @@ TEST_P(BadInput, OneLineNamingFileAndPlaceNoImageOtherSceneUnaffected) {
     for (const std::string& l : split_lines(r.err))
         if (contains(l, bad)) lines.push_back(l);
     ASSERT_EQ(lines.size(), 1u) << "expected exactly one stderr line naming " << bad << dump(r);
-    EXPECT_EQ(lines[0].rfind(bad + ": ", 0), 0u) << "the line should start with the scene path" << dump(r);
+    EXPECT_EQ(lines[0].rfind("error: " + bad + ": ", 0), 0u)
+        << "the line should start with error: and the scene path" << dump(r);
     for (const std::string& e : c.expect)
         EXPECT_TRUE(contains(lines[0], e)) << "the line should name '" << e << "'" << dump(r);
 

@@ -305,7 +305,8 @@ TEST(Cli, UsageErrorsAreOneLinePlusTheUsage) {
     write_scene(tmp.path(), "scene.json", sample_scene());
     const std::string usage =
         "usage: raytracer [-o DIR] [-j N] [--precision double|float] [--cull|--no-cull] [--rounding truncate|nearest] "
-        "[--stats FILE] [-q] scene.json|scene.xml...\n"
+        "[--min-weight W]\n"
+        "                 [--repeat N] [--stats FILE] [-q] [--strict] [measurement options] scene.json|scene.xml...\n"
         "       raytracer --trace X,Y [--camera N] [--trace-json FILE] [options] scene.json|scene.xml";
     const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
         {{"--no-such-option", "scene.json"}, "unknown option '--no-such-option'"},
@@ -325,7 +326,7 @@ TEST(Cli, UsageErrorsAreOneLinePlusTheUsage) {
     for (const auto& [args, message] : cases) {
         RunResult r = run_raytracer(args, tmp.path());
         EXPECT_EQ(r.exit_code, 2) << join(args) << dump(r);
-        EXPECT_EQ(r.err, "raytracer: " + message + "\n" + usage + "\n") << join(args);
+        EXPECT_EQ(r.err, "error: " + message + "\n" + usage + "\n") << join(args);
         EXPECT_EQ(r.out, "") << join(args);
     }
     EXPECT_EQ(list_files(tmp.path()), std::vector<std::string>{"scene.json"});
@@ -703,7 +704,8 @@ TEST_P(CliBadInput, ReportsOneLineAndRendersTheOtherScenes) {
     for (const std::string& l : split_lines(r.err))
         if (contains(l, bad)) lines.push_back(l);
     ASSERT_EQ(lines.size(), 1u) << "expected one stderr line naming " << bad << dump(r);
-    EXPECT_TRUE(starts_with(lines[0], bad)) << "the error line should start with the scene path" << dump(r);
+    EXPECT_TRUE(starts_with(lines[0], "error: " + bad))
+        << "the error line should start with error: and the scene path" << dump(r);
     if (!c.expect.empty()) {
         EXPECT_TRUE(contains(lines[0], c.expect)) << "the error line should name " << c.expect << dump(r);
     }

@@ -696,7 +696,7 @@ TEST(ConvertCli, BadInputIsOneLineAndWritesNothing) {
         EXPECT_EQ(r.exit_code, 1);
         const std::vector<std::string> lines = split_lines(r.err);
         ASSERT_EQ(lines.size(), 1u) << r.err;
-        EXPECT_EQ(lines[0].substr(0, c.error.size()), c.error);
+        EXPECT_EQ(lines[0].substr(0, c.error.size() + 7), "error: " + c.error);
         EXPECT_EQ(list_files(tmp.path()),
                   (std::vector<std::string>{"bad.obj", "broken.json", "broken.xml", "huge.json", "ok.json"}));
     }
@@ -708,7 +708,8 @@ TEST(ConvertCli, BadInputIsOneLineAndWritesNothing) {
 TEST(ConvertCli, NumberOverflowIsTheSameMessageInBothPrograms) {
     TempDir tmp;
     write_text(tmp / "huge.json", "{\"Scene\": {\n  \"ShadowRayEpsilon\": 1e999}}\n");
-    const std::string expected = "huge.json: line 2, column 23: number overflow parsing '1e999' (not a finite number)";
+    const std::string expected =
+        "error: huge.json: line 2, column 23: number overflow parsing '1e999' (not a finite number)";
     const RunResult render = run_raytracer({"huge.json"}, tmp.path());
     const RunResult convert = run_program(rtconvert_path(), {"huge.json", "out.xml"}, tmp.path());
     for (const RunResult* r : {&render, &convert}) {

@@ -230,7 +230,7 @@ TEST_F(RtdiffTool, UsageErrorsExitTwo) {
                                                  {"--bogus", "a.png", "b.png"}}) {
         const RunResult r = run(args);
         EXPECT_EQ(r.exit_code, 2) << args[0];
-        EXPECT_EQ(r.err.rfind("rtdiff: ", 0), 0u) << r.err;
+        EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << r.err;
     }
 }
 
@@ -339,7 +339,7 @@ TEST_F(RtdiffTool, HtmlPageListsWorstFirstAndLinksExistingFiles) {
     // Two images: --html is a usage error.
     const RunResult files = run({"--html", "p2", "a.png", "b.png"});
     EXPECT_EQ(files.exit_code, 2);
-    EXPECT_EQ(split_lines(files.err).at(0), "rtdiff: --html needs two folders");
+    EXPECT_EQ(split_lines(files.err).at(0), "error: --html needs two folders");
     EXPECT_FALSE(file_exists(tmp_ / "p2"));
 }
 

@@ -331,7 +331,7 @@ TEST(Trace, UsageErrorsExitTwoAndWriteNothing) {
         std::string all;
         for (const std::string& a : args) all += a + " ";
         EXPECT_EQ(r.exit_code, 2) << all << dump(r);
-        EXPECT_TRUE(contains(r.err, "raytracer: " + message + "\nusage: raytracer ")) << all << dump(r);
+        EXPECT_TRUE(contains(r.err, "error: " + message + "\nusage: raytracer ")) << all << dump(r);
         EXPECT_EQ(r.out, "") << all;
     }
     EXPECT_EQ(list_files(tmp.path()), std::vector<std::string>{"prism.json"});
@@ -344,8 +344,8 @@ TEST(Trace, BadSceneIsBadInput) {
     write_text(tmp / "bad.json", j.dump());
     const RunResult r = run_raytracer({"--trace", "0,0", tmp / "bad.json"});
     EXPECT_EQ(r.exit_code, 1) << dump(r);
-    EXPECT_EQ(r.err,
-              tmp / "bad.json" + ": /Scene/Objects/Mesh/Material: material id 5 does not exist (1 materials defined)\n")
+    EXPECT_EQ(r.err, "error: " + tmp / "bad.json" +
+                         ": /Scene/Objects/Mesh/Material: material id 5 does not exist (1 material defined)\n")
         << dump(r);
     EXPECT_EQ(r.out, "");
 }

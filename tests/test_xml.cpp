@@ -330,7 +330,7 @@ TEST(ImageOutput, UnknownExtensionFailsBeforeRendering) {
         EXPECT_EQ(r.exit_code, 1) << r.err;
         const std::vector<std::string> lines = split_lines(r.err);
         ASSERT_EQ(lines.size(), 1u) << r.err;
-        EXPECT_EQ(lines[0], "s.json: camera 2: ImageName '" + name +
+        EXPECT_EQ(lines[0], "error: s.json: camera 2: ImageName '" + name +
                                 "': unknown image format (the name must end in .png or .ppm)");
         EXPECT_EQ(list_files(tmp.path()), std::vector<std::string>{"s.json"}) << "nothing may be rendered";
     }

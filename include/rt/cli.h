@@ -2,7 +2,8 @@
 // CLI11: the value checks and their messages, the help layout, the exit statuses.
 //
 // Every option takes "--opt value" and "--opt=value" (short ones "-j 2" and "-j2").
-// A usage error prints "<program>: <what>" and the usage line on stderr, exit status 2;
+// Every error line on stderr starts "error: " (as warnings start "warning: "); a usage
+// error prints "error: <what>" and the usage line, exit status 2;
 // --help and --version print on stdout, exit status 0.
 #pragma once
 #include <CLI/CLI.hpp>
@@ -19,7 +20,7 @@ namespace rtcli {
 
 // A program's fixed texts.
 struct Program {
-    std::string name;     // error lines start "<name>: "
+    std::string name;     // the program's name (help, version)
     std::string version;  // what --version prints
     std::string usage;    // "usage: <name> [options] ...": after each usage error and atop --help
     std::string about;    // --help: the paragraph between the usage line and the options
@@ -94,7 +95,10 @@ CLI::Option* add_choice(CLI::App& app, const std::string& names, const std::stri
                      });
 }
 
-// Prints a usage error found after parsing ("<program>: <message>" and the usage line,
+// Prints "error: <message>" on stderr: every error line of the programs goes through it.
+void print_error(const std::string& message);
+
+// Prints a usage error found after parsing ("error: <message>" and the usage line,
 // as parse() does) and returns its exit status, 2.
 int report_usage_error(const Program& p, const std::string& message);
 

@@ -19,6 +19,7 @@ struct RunOptions {
     RenderOptions render;      // threads, culling, rounding (the progress callback is set per image)
     BvhBuildOptions bvh;       // BVH build knobs, for measurements
     bool quiet = false;        // stderr: errors only
+    bool strict = false;       // every warning is an error: the scene is bad input, no image
     bool progress = true;      // a progress line while each image renders, when stderr is a terminal
     int max_depth = -1;        // >= 0: overrides every scene's MaxRecursionDepth
     double epsilon_scale = 1;  // multiplies every scene's ShadowRayEpsilon

@@ -19,8 +19,8 @@ namespace {
 const cli::Program kProgram{
     "raytracer", "raytracer 1.0",
     "usage: raytracer [-o DIR] [-j N] [--precision double|float] [--cull|--no-cull] [--rounding truncate|nearest] "
-    "[--stats FILE] [-q] "
-    "scene.json|scene.xml...\n"
+    "[--min-weight W]\n"
+    "                 [--repeat N] [--stats FILE] [-q] [--strict] [measurement options] scene.json|scene.xml...\n"
     "       raytracer --trace X,Y [--camera N] [--trace-json FILE] [options] scene.json|scene.xml",
     "Renders every camera of each scene file (JSON, or the course's older XML format when the\n"
     "name ends in .xml) to the image its ImageName names: PNG (.png) or binary PPM (.ppm).\n",
@@ -66,6 +66,9 @@ int raytracer_cli(int argc, char** argv) {
     cli::add_text(app, "--trace-json", "FILE", "--trace: also write the ray tree to FILE as JSON", request.json_path,
                   "a file name");
     app.add_flag("-q,--quiet", o.quiet, "print errors only (and no progress line, which is shown only on a terminal)");
+    app.add_flag(
+        "--strict", o.strict,
+        "treat every warning (unknown key, skipped triangle, ...) as an error: exit 1, no image of that scene");
     app.option_defaults()->group("for measurements (the defaults are the scene's values and the tuned BVH)");
     cli::add_whole(app, "--max-depth", "N", "override every scene's MaxRecursionDepth (0..10000)", o.max_depth, 0,
                    10000);
@@ -95,8 +98,8 @@ int raytracer_cli(int argc, char** argv) {
     if (const auto status = cli::parse(app, kProgram, argc, argv)) return *status;
     // main() picked this copy of the program from the same arguments (precision_of).
     if (float_precision != std::is_same_v<Real, float>) {
-        std::fprintf(stderr, "raytracer: internal error: --precision %s reached the %s renderer\n",
-                     float_precision ? "float" : "double", kPrecisionName);
+        cli::print_error(std::string("internal error: --precision ") + (float_precision ? "float" : "double") +
+                         " reached the " + kPrecisionName + " renderer");
         return 1;
     }
 
@@ -114,7 +117,7 @@ int raytracer_cli(int argc, char** argv) {
         try {
             write_file_atomic(stats_path, stats_json(report.images, kProgram.version));
         } catch (const InputError& e) {
-            std::fprintf(stderr, "%s\n", e.what());
+            cli::print_error(e.what());
             ok = false;
         }
     }

@@ -13,6 +13,7 @@
 
 #include "progress.h"
 #include "rt/atomic_file.h"
+#include "rt/cli.h"
 #include "rt/error.h"
 #include "rt/image.h"
 #include "rt/loader.h"
@@ -22,6 +23,9 @@
 namespace rt {
 
 namespace {
+
+// "1 sphere", "3 spheres".
+std::string count_of(size_t n, const char* noun) { return std::to_string(n) + " " + noun + (n == 1 ? "" : "s"); }
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -38,11 +42,24 @@ struct LoadedScene {
     Scene scene;
     SceneFigures figures;
     double load_seconds = 0;  // parse + PLY + setup: the summary line's "load"
+    size_t warnings = 0;      // warnings its loading raised (the summary line counts them)
 };
 
+// Reports the warnings of a scene: on stderr as "warning: ..." unless quiet; under
+// --strict as "error: ..." lines, and then the scene is bad input (returns false).
+bool report_warnings(const std::vector<std::string>& warnings, const RunOptions& o) {
+    for (const std::string& w : warnings) {
+        if (o.strict)
+            cli::print_error(w + " (--strict)");
+        else if (!o.quiet)
+            std::fprintf(stderr, "warning: %s\n", w.c_str());
+    }
+    return !(o.strict && !warnings.empty());
+}
+
 // Loads and builds one scene file; prints its warnings (unless quiet) and its error
-// line, and returns nothing on bad input. Every ImageName is checked before anything
-// is rendered: .png or .ppm.
+// line, and returns nothing on bad input (under --strict, a warning is bad input). Every
+// ImageName is checked before anything is rendered: .png or .ppm.
 std::optional<LoadedScene> load(const std::string& scene_path, const RunOptions& o) {
     const auto t0 = std::chrono::steady_clock::now();
     try {
@@ -50,36 +67,38 @@ std::optional<LoadedScene> load(const std::string& scene_path, const RunOptions&
         SceneTimes times;
         times.ply = desc.ply_seconds;
         times.parse = seconds_since(t0) - desc.ply_seconds;
-        if (!o.quiet)
-            for (const std::string& w : desc.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+        const size_t warnings = desc.warnings.size();
+        if (!report_warnings(desc.warnings, o)) return std::nullopt;
         bool names_ok = true;
         for (size_t c = 0; c < desc.cameras.size(); ++c) {
             if (image_format_of(desc.cameras[c].image_name) != ImageFormat::Unknown) continue;
-            std::fprintf(stderr,
-                         "%s: camera %zu: ImageName '%s': unknown image format (the name must end in .png or .ppm)\n",
-                         scene_path.c_str(), c + 1, desc.cameras[c].image_name.c_str());
+            cli::print_error(scene_path + ": camera " + std::to_string(c + 1) + ": ImageName '" +
+                             desc.cameras[c].image_name +
+                             "': unknown image format (the name must end in .png or .ppm)");
             names_ok = false;
         }
         if (!names_ok) return std::nullopt;
         const auto b0 = std::chrono::steady_clock::now();
-        LoadedScene s{build_scene(std::move(desc), o.bvh), {}, 0};
+        LoadedScene s{build_scene(std::move(desc), o.bvh), {}, 0, warnings};
         const double build_s = seconds_since(b0);
         const double total_s = seconds_since(t0);
         apply_overrides(s.scene, o);
         s.figures = scene_figures(s.scene, times);
         s.figures.seconds.setup = build_s - s.figures.seconds.bvh;
         s.load_seconds = total_s - s.figures.seconds.bvh;
-        if (s.figures.degenerate > 0 && !o.quiet)
-            std::fprintf(stderr, "warning: %s: skipped %zu degenerate triangle%s\n", scene_path.c_str(),
-                         s.figures.degenerate, s.figures.degenerate > 1 ? "s" : "");
+        if (const size_t n = s.figures.degenerate; n > 0) {
+            ++s.warnings;
+            if (!report_warnings({scene_path + ": skipped " + count_of(n, "degenerate triangle")}, o))
+                return std::nullopt;
+        }
         return std::optional<LoadedScene>(std::move(s));  // moved, never copied
     } catch (const InputError& e) {
-        std::fprintf(stderr, "%s\n", e.what());
+        cli::print_error(e.what());
     } catch (const std::bad_alloc&) {
-        std::fprintf(stderr, "%s: out of memory while loading\n", scene_path.c_str());
+        cli::print_error(scene_path + ": out of memory while loading");
     } catch (const std::exception& e) {
         // Not expected (every bad input is an InputError); still one line, no crash.
-        std::fprintf(stderr, "%s: cannot load: %s\n", scene_path.c_str(), e.what());
+        cli::print_error(scene_path + ": cannot load: " + e.what());
     }
     return std::nullopt;
 }
@@ -104,11 +123,13 @@ ImageRecord render_camera(const std::string& scene_path, const LoadedScene& s, s
     const auto w0 = std::chrono::steady_clock::now();
     write_image(img, out);
     r.write = seconds_since(w0);
-    if (!o.quiet)
-        std::fprintf(stderr,
-                     "%s: %dx%d, %s, %zu triangles, %zu spheres, load %.3fs, bvh %.3fs, render %.3fs, write %.3fs\n",
-                     out.c_str(), cam.width, cam.height, kPrecisionName, s.figures.triangles, s.figures.spheres,
-                     s.load_seconds, s.figures.seconds.bvh, r.render, r.write);
+    if (!o.quiet) {
+        const std::string warned = s.warnings == 0 ? "" : ", " + count_of(s.warnings, "warning");
+        std::fprintf(stderr, "%s: %dx%d, %s, %s, %s, load %.3fs, bvh %.3fs, render %.3fs, write %.3fs%s\n", out.c_str(),
+                     cam.width, cam.height, kPrecisionName, count_of(s.figures.triangles, "triangle").c_str(),
+                     count_of(s.figures.spheres, "sphere").c_str(), s.load_seconds, s.figures.seconds.bvh, r.render,
+                     r.write, warned.c_str());
+    }
     r.peak_rss = app::peak_rss_bytes();
     return r;
 }
@@ -124,17 +145,16 @@ bool run_scene(const std::string& scene_path, const RunOptions& o, std::vector<I
         try {
             records.push_back(render_camera(scene_path, *s, c, out, o));
         } catch (const InputError& e) {
-            std::fprintf(stderr, "%s: camera %zu: %s\n", scene_path.c_str(), c + 1, e.what());
+            cli::print_error(scene_path + ": camera " + std::to_string(c + 1) + ": " + e.what());
             ok = false;
         } catch (const std::bad_alloc&) {
-            std::fprintf(stderr, "%s: camera %zu: out of memory rendering %s\n", scene_path.c_str(), c + 1,
-                         out.c_str());
+            cli::print_error(scene_path + ": camera " + std::to_string(c + 1) + ": out of memory rendering " + out);
             ok = false;
         } catch (const std::exception& e) {
             // Any other failure of this camera (helper threads that cannot start do not
             // fail: their work runs on the calling thread, rt/threads.h).
-            std::fprintf(stderr, "%s: camera %zu: cannot render %s: %s\n", scene_path.c_str(), c + 1, out.c_str(),
-                         e.what());
+            cli::print_error(scene_path + ": camera " + std::to_string(c + 1) + ": cannot render " + out + ": " +
+                             e.what());
             ok = false;
         }
     }
@@ -186,7 +206,7 @@ int run_trace(const std::string& scene_path, const RunOptions& o, const PixelTra
     try {
         write_file_atomic(req.json_path, trace_json(s->scene, t));
     } catch (const InputError& e) {
-        std::fprintf(stderr, "%s\n", e.what());
+        cli::print_error(e.what());
         return 1;
     }
     return 0;

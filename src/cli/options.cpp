@@ -82,8 +82,11 @@ size_t one_of(const std::string& option, const std::string& text, const std::vec
     usage_error(option + " takes " + listed + ", got '" + text + "'");
 }
 
+void print_error(const std::string& message) { std::fprintf(stderr, "error: %s\n", message.c_str()); }
+
 int report_usage_error(const Program& p, const std::string& message) {
-    std::fprintf(stderr, "%s: %s\n%s\n", p.name.c_str(), message.c_str(), p.usage.c_str());
+    print_error(message);
+    std::fprintf(stderr, "%s\n", p.usage.c_str());
     return 2;
 }
 

@@ -69,12 +69,12 @@ int main(int argc, char** argv) {
         }
         return 0;
     } catch (const rt::InputError& e) {
-        std::fprintf(stderr, "%s\n", e.what());
+        rt::cli::print_error(e.what());
     } catch (const std::bad_alloc&) {
-        std::fprintf(stderr, "%s: out of memory\n", files[0].c_str());
+        rt::cli::print_error(files[0] + ": out of memory");
     } catch (const std::exception& e) {
         // Not expected (every bad input is an InputError); still one line, no crash.
-        std::fprintf(stderr, "%s: cannot convert: %s\n", files[0].c_str(), e.what());
+        rt::cli::print_error(files[0] + ": cannot convert: " + e.what());
     }
     return 1;
 }

@@ -17,6 +17,7 @@
 #include "rt/files.h"
 #include "rt/ply.h"
 #include "rt/scene_tree.h"
+#include "rt/spelling.h"
 
 namespace rt {
 namespace {
@@ -86,9 +87,10 @@ public:
         load_lights(scene, sp);
         load_objects(scene, sp);
 
-        for (const auto& [key, count] : unknown_)
+        for (const auto& [key, u] : unknown_)
             out_.warnings.push_back(file_ + ": " + key + ": unknown key ignored" +
-                                    (count > 1 ? " (" + std::to_string(count) + " times)" : ""));
+                                    (u.count > 1 ? " (" + std::to_string(u.count) + " times)" : "") +
+                                    (u.suggestion.empty() ? "" : " (did you mean " + u.suggestion + "?)"));
     }
 
 private:
@@ -96,7 +98,11 @@ private:
     SceneDesc& out_;
     std::vector<Vec3> vertices_;                              // VertexData, 0-based
     std::unordered_map<std::string, uint32_t> material_ids_;  // _id -> index
-    std::map<std::string, int> unknown_;                      // generic key path -> occurrences
+    struct Unknown {
+        int count = 0;
+        std::string suggestion;  // the valid key it is a near miss of (rt/spelling.h), or ""
+    };
+    std::map<std::string, Unknown> unknown_;  // generic key path -> occurrences
 
     [[noreturn]] void fail(const std::string& where, const std::string& what) const {
         throw InputError(file_ + ": " + (where.empty() ? "/" : where) + ": " + what);
@@ -107,9 +113,17 @@ private:
         return it == obj.end() ? nullptr : &*it;
     }
 
+    // A required key; when it is missing, the error names a near miss of it that the
+    // object has instead ("found 'Raduis' instead").
     const json& require(const json& obj, const std::string& path, const char* key) const {
         const json* v = find(obj, key);
-        if (!v) fail(path + "/" + key, "required key is missing");
+        if (!v) {
+            std::string found;
+            for (auto it = obj.begin(); it != obj.end() && found.empty(); ++it)
+                if (!near_miss(it.key(), {key}).empty()) found = it.key();
+            fail(path + "/" + key,
+                 "required key is missing" + (found.empty() ? "" : " (found '" + found + "' instead)"));
+        }
         return *v;
     }
 
@@ -117,13 +131,17 @@ private:
         if (!v.is_object()) fail(path, std::string("expected an object, got ") + type_name(v));
     }
 
-    // Records keys the renderer does not use; `generic` is the path without array indices.
+    // Records keys the renderer does not use, each with the valid key it is a near miss
+    // of, if any; `generic` is the path without array indices.
     void check_keys(const json& obj, const std::string& /*path*/, const std::string& generic,
                     std::initializer_list<const char*> known) {
         for (auto it = obj.begin(); it != obj.end(); ++it) {
             bool ok = false;
             for (const char* k : known) ok = ok || it.key() == k;
-            if (!ok) ++unknown_[generic + "/" + it.key()];
+            if (ok) continue;
+            Unknown& u = unknown_[generic + "/" + it.key()];
+            if (u.count++ == 0)
+                u.suggestion = near_miss(it.key(), std::vector<std::string>(known.begin(), known.end()));
         }
     }
 
@@ -272,7 +290,7 @@ private:
         auto it = material_ids_.find(std::to_string(id));
         if (it == material_ids_.end())
             fail(mp, "material id " + std::to_string(id) + " does not exist (" + std::to_string(material_ids_.size()) +
-                         " materials defined)");
+                         (material_ids_.size() == 1 ? " material" : " materials") + " defined)");
         return it->second;
     }
 

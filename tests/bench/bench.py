@@ -56,10 +56,10 @@ DEFAULT_SHAPE_SIZES = ["1M"]
 CULL_MODES = ["cull", "no-cull"]  # the flag passed to both programs
 
 OURS_LINE = re.compile(
-    r"^(?P<image>.*): (?P<w>\d+)x(?P<h>\d+), (?P<precision>double|float), (?P<tris>\d+) triangles, "
-    r"(?P<spheres>\d+) spheres, "
+    r"^(?P<image>.*): (?P<w>\d+)x(?P<h>\d+), (?P<precision>double|float), (?P<tris>\d+) triangles?, "
+    r"(?P<spheres>\d+) spheres?, "
     r"load (?P<load>[\d.eE+-]+)s, bvh (?P<bvh>[\d.eE+-]+)s, render (?P<render>[\d.eE+-]+)s, "
-    r"write (?P<write>[\d.eE+-]+)s\s*$")
+    r"write (?P<write>[\d.eE+-]+)s(, \d+ warnings?)?\s*$")
 REF_LINE = re.compile(
     r"^(?P<image>\S+) parse=(?P<parse>[\d.eE+-]+)s bvh=(?P<bvh>[\d.eE+-]+)s render=(?P<render>[\d.eE+-]+)s "
     r"rays=(?P<rays>\d+) rays/s=(?P<rps>[\d.eE+-]+)")
