@@ -161,11 +161,13 @@ TEST(Trace, CommandLineTracePixelEqualsTheWrittenImageInEveryOfficialScene) {
         const std::vector<uint8_t> expected = pixel_of(img, x, y);
         EXPECT_EQ(doc["pixel"].get<std::vector<int>>(), std::vector<int>(expected.begin(), expected.end()))
             << path << " camera " << c + 1 << " pixel " << x << "," << y;
-        // The text's last line names the same value.
-        const std::string last = "[" + std::to_string(expected[0]) + ", " + std::to_string(expected[1]) + ", " +
-                                 std::to_string(expected[2]) + "] after rounding (truncate)\n";
-        EXPECT_TRUE(r.out.size() >= last.size() && r.out.compare(r.out.size() - last.size(), last.size(), last) == 0)
-            << path << dump(r);
+        // The text's last line (folded at 100 characters) names the same value.
+        const std::string last = "\npixel [" + std::to_string(expected[0]) + ", " + std::to_string(expected[1]) + ", " +
+                                 std::to_string(expected[2]) + "] after rounding (truncate), from ";
+        const size_t at = r.out.rfind("\npixel [");
+        EXPECT_TRUE(at != std::string::npos && r.out.compare(at, last.size(), last) == 0) << path << dump(r);
+        // Every line fits a terminal of 100 columns.
+        for (const std::string& line : split_lines(r.out)) EXPECT_LE(line.size(), 100u) << path << ": " << line;
         // --trace renders nothing: only the JSON and the images of the render are there.
         EXPECT_FALSE(file_exists(tmp / "trace.json.tmp"));
     }
@@ -307,6 +309,147 @@ TEST(Trace, ABackFaceTheCameraRayPassesOverIsReported) {
     EXPECT_EQ(b["ray"]["hit"]["front"], false);
     EXPECT_EQ(b["ray"]["cull"], false);
     EXPECT_TRUE(b["ray"]["culled"].is_null());
+}
+
+// The Fresnel terms a student checks their Snell step against: at the prism's front face
+// (normal incidence, 1 -> 1.5) and where the ray leaves through the side (1.5 -> 1), the
+// indices, cosines, sin^2 of the refraction angle and both polarisations; at the
+// hypotenuse, total internal reflection (sin^2 theta_t >= 1). Snell's law and the average
+// of the polarisations hold in the JSON; the text prints the same terms.
+TEST(Trace, FresnelTermsOfADielectricAreShown) {
+    TempDir tmp;
+    write_text(tmp / "prism.json", kPrismScene);
+    const auto [r, doc] = trace_run(tmp / "prism.json", "2,2", tmp / "t.json");
+    ASSERT_EQ(r.exit_code, 0) << dump(r);
+    const json& front = doc["ray"]["fresnel"];
+    EXPECT_EQ(front["n1"], 1.0);
+    EXPECT_EQ(front["n2"], 1.5);
+    EXPECT_NEAR(front["cos_i"].get<double>(), 1, kTol);
+    EXPECT_NEAR(front["sin2_t"].get<double>(), 0, kTol);
+    EXPECT_NEAR(front["cos_t"].get<double>(), 1, kTol);
+    EXPECT_NEAR(front["r_parallel"].get<double>(), 0.04, kTol);  // ((1.5 - 1) / 2.5)^2 for both
+    EXPECT_NEAR(front["r_perpendicular"].get<double>(), 0.04, kTol);
+    const json& hyp = doc["ray"]["children"][1]["fresnel"];
+    EXPECT_EQ(hyp["n1"], 1.5);
+    EXPECT_EQ(hyp["n2"], 1.0);
+    EXPECT_NEAR(hyp["cos_i"].get<double>(), std::sqrt(0.5), 1e-6);  // 45 degrees
+    EXPECT_NEAR(hyp["sin2_t"].get<double>(), 1.125, 1e-5);          // 1.5^2 * 0.5: total internal reflection
+    EXPECT_EQ(hyp["cos_t"], 0.0);
+    EXPECT_EQ(hyp["r_parallel"], 1.0);
+    EXPECT_EQ(hyp["r_perpendicular"], 1.0);
+    for (const json* f : {&front, &doc["ray"]["children"][1]["children"][0]["fresnel"]}) {
+        const double n1 = (*f)["n1"], n2 = (*f)["n2"], ci = (*f)["cos_i"], s2 = (*f)["sin2_t"], ct = (*f)["cos_t"];
+        EXPECT_NEAR(n1 * n1 * (1 - ci * ci), n2 * n2 * s2, kTol);  // Snell: n1 sin_i = n2 sin_t
+        EXPECT_NEAR(ct * ct + s2, 1, kTol);
+        EXPECT_NEAR(((*f)["r_parallel"].get<double>() + (*f)["r_perpendicular"].get<double>()) / 2,
+                    (*f)["reflectance"].get<double>(), kTol);
+    }
+    EXPECT_TRUE(contains(r.out, "Fresnel (dielectric): n1 1 -> n2 1.5, cos theta_i 1, sin^2 theta_t 0, cos theta_t 1"))
+        << dump(r);
+    EXPECT_TRUE(contains(r.out, "Fresnel (dielectric): n1 1.5 -> n2 1, cos theta_i 0.7071067")) << dump(r);
+    EXPECT_TRUE(contains(r.out, "sin^2 theta_t 1.125")) << dump(r);
+    EXPECT_TRUE(contains(r.out, "R parallel 0.04")) << dump(r);
+    EXPECT_TRUE(contains(r.out, "total internal reflection: no refracted ray")) << dump(r);
+}
+
+// A conductor's complex index n + i k and its two polarisations; at normal incidence
+// both are ((n - 1)^2 + k^2) / ((n + 1)^2 + k^2).
+TEST(Trace, FresnelTermsOfAConductorAreShown) {
+    json j = json::parse(kPrismScene);
+    j["Scene"]["Materials"]["Material"] = json::parse(R"({"_id": "4", "_type": "conductor",
+        "MirrorReflectance": "1 1 1", "RefractionIndex": "0.37", "AbsorptionIndex": "2.82"})");
+    TempDir tmp;
+    write_text(tmp / "gold.json", j.dump());
+    const auto [r, doc] = trace_run(tmp / "gold.json", "2,2", tmp / "t.json");
+    ASSERT_EQ(r.exit_code, 0) << dump(r);
+    const json& f = doc["ray"]["fresnel"];
+    EXPECT_EQ(f["n1"], 1.0);
+    EXPECT_NEAR(f["n2"].get<double>(), 0.37, 1e-6);
+    EXPECT_NEAR(f["k"].get<double>(), 2.82, 1e-6);
+    const double n = 0.37, k = 2.82, r0 = ((n - 1) * (n - 1) + k * k) / ((n + 1) * (n + 1) + k * k);
+    EXPECT_NEAR(f["r_parallel"].get<double>(), r0, 1e-6);
+    EXPECT_NEAR(f["r_perpendicular"].get<double>(), r0, 1e-6);
+    EXPECT_NEAR(f["reflectance"].get<double>(), r0, 1e-6);
+    EXPECT_TRUE(f.find("cos_t") == f.end()) << "a conductor refracts nothing";
+    EXPECT_TRUE(contains(r.out, "Fresnel (conductor): n1 1 -> n2 0.37 + 2.82i, cos theta_i 1")) << dump(r);
+}
+
+// On a back-face hit the printed geometric and shading normals are the outward ones; the
+// facing normal is the shading normal turned towards the ray, and the offsets follow it.
+TEST(Trace, BackFaceHitNamesWhichWayEachNormalPoints) {
+    TempDir tmp;
+    write_text(tmp / "prism.json", kPrismScene);
+    const auto [r, doc] = trace_run(tmp / "prism.json", "2,2", tmp / "t.json");
+    ASSERT_EQ(r.exit_code, 0) << dump(r);
+    const json& hit = doc["ray"]["children"][1]["hit"];  // the hypotenuse, from inside
+    ASSERT_EQ(hit["front"], false);
+    for (int a = 0; a < 3; ++a) {
+        EXPECT_EQ(hit["facing_normal"][a].get<double>(), -hit["shading_normal"][a].get<double>());
+        // Outward: away from the prism's inside, towards +z and -x.
+    }
+    EXPECT_LT(hit["shading_normal"][0].get<double>(), 0);
+    EXPECT_LT(hit["shading_normal"][2].get<double>(), 0);
+    // The reflected ray starts on the ray's side: point + facing normal x eps.
+    const json& refl = doc["ray"]["children"][1]["children"][0];
+    for (int a = 0; a < 3; ++a)
+        EXPECT_NEAR(refl["origin"][a].get<double>(),
+                    hit["point"][a].get<double>() + 1e-3 * hit["facing_normal"][a].get<double>(), kTol);
+    EXPECT_TRUE(contains(r.out, "back face: the ray meets the inside; the outward normals point away from it"))
+        << dump(r);
+    EXPECT_TRUE(contains(r.out, ", outward: the lights use it")) << dump(r);
+    EXPECT_TRUE(contains(r.out, ": the shading normal turned towards the ray")) << dump(r);
+    EXPECT_TRUE(contains(r.out, "reflected rays start at (")) << dump(r);
+}
+
+// --min-weight: two facing half mirrors (MirrorReflectance 0.5) at MaxRecursionDepth 20.
+// The default 1e-4 stops the bounces once 0.5^d < 1e-4 (d = 14); 0 traces all 20, and
+// 0.3 only the first. The text says why a ray was not traced; the JSON has the option.
+TEST(Trace, MinWeightDecidesWhichRaysAreTraced) {
+    const char* scene = R"({"Scene": {"MaxRecursionDepth": "20",
+      "Cameras": {"Camera": {"Position": "0 0 0.5", "Gaze": "0 0 -1", "Up": "0 1 0",
+        "NearPlane": "-0.01 0.01 -0.01 0.01", "NearDistance": "1", "ImageResolution": "1 1", "ImageName": "m.png"}},
+      "Lights": {"AmbientLight": "10 10 10"},
+      "Materials": {"Material": {"_type": "mirror", "AmbientReflectance": "1 1 1", "MirrorReflectance": "0.5 0.5 0.5"}},
+      "VertexData": "0 0 -1  0 0 1",
+      "Objects": {"Plane": [{"Material": "1", "Point": "1", "Normal": "0 0 1"},
+                            {"Material": "1", "Point": "2", "Normal": "0 0 -1"}]}}})";
+    TempDir tmp;
+    write_text(tmp / "m.json", scene);
+    // The depth of the deepest traced ray, and whether a ray was left untraced.
+    const auto deepest = [](const json& doc) {
+        int depth = 0;
+        bool skipped = false;
+        for (const json* n = &doc["ray"]; n;) {
+            if (!(*n)["traced"].get<bool>()) {
+                skipped = true;
+                break;
+            }
+            depth = (*n)["depth"];
+            n = (*n)["children"].empty() ? nullptr : &(*n)["children"][0];
+        }
+        return std::make_pair(depth, skipped);
+    };
+    const auto [def, d_doc] = trace_run(tmp / "m.json", "0,0", tmp / "d.json");
+    ASSERT_EQ(def.exit_code, 0) << dump(def);
+    EXPECT_EQ(d_doc["min_weight"], 1e-4);
+    EXPECT_EQ(deepest(d_doc), std::make_pair(13, true));  // 0.5^13 >= 1e-4 > 0.5^14
+    EXPECT_TRUE(contains(def.out, "not traced (weight below --min-weight 0.0001)")) << dump(def);
+    const auto [all, a_doc] = trace_run(tmp / "m.json", "0,0", tmp / "a.json", {"--min-weight", "0"});
+    ASSERT_EQ(all.exit_code, 0) << dump(all);
+    EXPECT_EQ(deepest(a_doc), std::make_pair(20, false));
+    EXPECT_FALSE(contains(all.out, "not traced")) << dump(all);
+    const auto [few, f_doc] = trace_run(tmp / "m.json", "0,0", tmp / "f.json", {"--min-weight=0.3"});
+    ASSERT_EQ(few.exit_code, 0) << dump(few);
+    EXPECT_EQ(deepest(f_doc), std::make_pair(1, true));
+    // The render takes the option too: 10 + 5 + 2.5 + ... over 21 terms against 14.
+    const RunResult r0 = run_raytracer({"-q", "--min-weight", "0", "m.json"}, tmp.path());
+    ASSERT_EQ(r0.exit_code, 0) << dump(r0);
+    rt::Image img;
+    ASSERT_TRUE(load_png(tmp / "m.png", img));
+    EXPECT_EQ(int(img.rgb[0]), 19);  // 20 (1 - 0.5^21) = 19.99999, truncated
+    const RunResult bad = run_raytracer({"--min-weight", "2", "m.json"}, tmp.path());
+    EXPECT_EQ(bad.exit_code, 2) << dump(bad);
+    EXPECT_TRUE(contains(bad.err, "error: --min-weight needs a number from 0 to 1, got '2'")) << dump(bad);
 }
 
 // ---- Usage errors -----------------------------------------------------------------------

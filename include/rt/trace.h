@@ -51,7 +51,9 @@ struct RayTrace {
     bool hit = false;
     ShapeRef shape{ShapeKind::Triangle, 0};
     Real t = 0;
-    Vec3 point, ng, ns;  // ng, ns: outward geometric and shading normals
+    Vec3 point, ng, ns;  // ng, ns: outward geometric and shading normals (the side the vertices wind
+                         // counter-clockwise around), whichever side the ray came from
+    Vec3 nf;             // the shading normal turned towards the incoming ray: secondary rays' offsets
     bool front = true;
     uint32_t material = 0;
     // With culling: the nearest back face the culled query passed over (a second query).
@@ -64,7 +66,7 @@ struct RayTrace {
     std::vector<LightTrace> lights;
 
     bool has_fresnel = false;  // conductors and dielectrics
-    Real fresnel = 0;          // reflectance F (transmittance 1 - F for dielectrics)
+    FresnelTerms fresnel;      // reflectance F (transmittance 1 - F for dielectrics) and its terms
     bool refracts = false;     // dielectric with a refracted ray
     bool tir = false;          // dielectric from the denser side with no refracted ray
     Vec3 refracted;            // refracted direction
@@ -82,6 +84,7 @@ struct PixelTrace {
     size_t camera = 0;  // 0-based
     int x = 0, y = 0;   // column from the left, row from the top
     Rounding rounding = Rounding::Truncate;
+    double min_weight = kDefaultMinWeight;  // the options' TraceOptions::min_weight
     RayTrace root;
     Vec3 clamped;        // clamp_channel of root.radiance
     uint8_t pixel[3]{};  // quantize of root.radiance: the image's byte

@@ -47,6 +47,10 @@ int raytracer_cli(int argc, char** argv) {
     app.add_flag("--cull,!--no-cull", o.render.cull, "back-face culling of camera and reflection rays (default: on)");
     cli::add_choice(app, "--rounding", "truncate (default, as the reference images) or nearest", o.render.rounding,
                     {{"truncate", Rounding::Truncate}, {"nearest", Rounding::Nearest}});
+    cli::add_number(app, "--min-weight", "W",
+                    "do not trace a reflected or refracted ray whose weight in the pixel is below W (0..1, default "
+                    "1e-4; 0 traces every ray to MaxRecursionDepth, as the assignment does)",
+                    o.render.min_weight, "a number from 0 to 1", [](double w) { return w >= 0 && w <= 1; });
     cli::add_text(app, "--stats", "FILE", "write figures per image (times, rays by kind, BVH, memory) to FILE as JSON",
                   stats_path, "a file name");
     cli::add_value(app, "--trace", "X,Y",

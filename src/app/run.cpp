@@ -199,7 +199,8 @@ int run_trace(const std::string& scene_path, const RunOptions& o, const PixelTra
                          std::to_string(cam.width) + "x" + std::to_string(cam.height) + " image of camera " +
                          std::to_string(req.camera) + " (x 0.." + std::to_string(cam.width - 1) + ", y 0.." +
                          std::to_string(cam.height - 1) + ")");
-    PixelTrace t = trace_pixel(s->scene, req.camera - 1, req.x, req.y, TraceOptions{o.render.cull}, o.render.rounding);
+    PixelTrace t = trace_pixel(s->scene, req.camera - 1, req.x, req.y, TraceOptions{o.render.cull, o.render.min_weight},
+                               o.render.rounding);
     t.scene = scene_path;
     std::fputs(trace_text(s->scene, t).c_str(), stdout);
     if (req.json_path.empty()) return 0;

@@ -28,25 +28,52 @@ std::string light_name(size_t index) { return "light " + std::to_string(index + 
 
 // --- text ------------------------------------------------------------------------------
 
+// Lines of text are at most this long (a terminal's width): longer ones are broken
+// after a ", " or ": " outside parentheses and brackets, the rest indented under them.
+constexpr size_t kTextWidth = 100;
+
 class TextWriter {
 public:
-    explicit TextWriter(const Scene& scene) : scene_(scene) {}
+    TextWriter(const Scene& scene, const PixelTrace& trace) : scene_(scene), trace_(trace) {}
 
-    void line(int indent, const std::string& text) { out_ += std::string(size_t(indent) * 2, ' ') + text + "\n"; }
+    void line(int indent, const std::string& text) {
+        const std::string pad(size_t(indent) * 2, ' ');
+        std::string rest = text;
+        std::string lead = pad;
+        while (lead.size() + rest.size() > kTextWidth) {
+            // The last break that fits, else the first one there is.
+            size_t cut = std::string::npos;
+            int depth = 0;
+            for (size_t i = 0; i + 1 < rest.size(); ++i) {
+                depth += (rest[i] == '(' || rest[i] == '[') ? 1 : (rest[i] == ')' || rest[i] == ']') ? -1 : 0;
+                if (depth == 0 && (rest[i] == ',' || rest[i] == ':') && rest[i + 1] == ' ') {
+                    if (lead.size() + i + 1 > kTextWidth && cut != std::string::npos) break;
+                    cut = i + 1;
+                }
+            }
+            if (cut == std::string::npos) break;
+            out_ += lead + rest.substr(0, cut) + "\n";
+            rest = rest.substr(cut + 1);
+            lead = pad + "    ";
+        }
+        out_ += lead + rest + "\n";
+    }
 
     void ray(const RayTrace& r, int indent, bool child) {
         std::string head = std::string(ray_kind_name(r.kind)) + " ray, depth " + std::to_string(r.depth);
-        if (child) head += ", factor " + vec(r.factor) + ", weight " + num(r.weight);
+        if (child) head += ", weight " + num(r.weight) + ", factor " + vec(r.factor);
         if (r.pruned) {
-            line(indent, head + ": not traced (its weight is negligible)");
+            line(indent, head + ": not traced (weight below --min-weight " + num(Real(trace_.min_weight)) + ")");
             return;
         }
-        head += ": origin " + vec(r.ray.org) + ", direction " + vec(r.ray.dir) + ", t in (" + num(r.tmin) + ", " +
-                num(r.tmax) + ")";
-        head += r.cull ? ", back faces culled" : ", no culling";
-        if (r.medium >= 0) head += ", inside material " + material_id(scene_, size_t(r.medium));
         line(indent, head);
         const int in = indent + 1;
+        line(in, "origin " + vec(r.ray.org));
+        line(in, "direction " + vec(r.ray.dir));
+        std::string search = "t in (" + num(r.tmin) + ", " + num(r.tmax) + ")";
+        search += r.cull ? ", back faces culled" : ", no culling";
+        if (r.medium >= 0) search += ", inside material " + material_id(scene_, size_t(r.medium));
+        line(in, search);
         if (r.culled) line(in, "back face culled: " + scene_.names.name(r.culled_shape) + " at t = " + num(r.culled_t));
         if (!r.hit) {
             line(in, "miss");
@@ -55,8 +82,17 @@ public:
         }
         const Material& m = scene_.setup.materials[r.material];
         line(in, "hit " + scene_.names.name(r.shape) + " at t = " + num(r.t) + ", point " + vec(r.point));
-        line(in, std::string(r.front ? "front" : "back") + " face, geometric normal " + vec(r.ng) +
-                     ", shading normal " + vec(r.ns));
+        line(in, r.front ? "front face: the ray meets the side the outward normals point to"
+                         : "back face: the ray meets the inside; the outward normals point away from it");
+        line(in + 1, "geometric normal " + vec(r.ng) + ", outward");
+        line(in + 1, "shading normal " + vec(r.ns) + ", outward: the lights use it");
+        line(in + 1, "facing normal " + vec(r.nf) + ": the shading normal turned towards the ray");
+        const Real eps = scene_.setup.shadow_ray_epsilon;
+        if (r.shaded)
+            line(in + 1, "shadow rays start at " + vec(r.point + r.ns * eps) + ", point + shading normal x eps");
+        line(in + 1, "reflected rays start at " + vec(r.point + r.nf * eps) + ", point + facing normal x eps");
+        if (m.type == MaterialType::Dielectric)
+            line(in + 1, "refracted rays start at " + vec(r.point - r.nf * eps) + ", point - facing normal x eps");
         line(in, "material " + material_id(scene_, r.material) + " (" + material_type_name(m.type) + ")");
         if (r.shaded) {
             line(in, "ambient " + vec(r.ambient));
@@ -65,21 +101,32 @@ public:
         } else {
             line(in, "not shaded (a dielectric hit from inside)");
         }
-        if (r.has_fresnel) {
-            std::string f = "Fresnel reflectance " + num(r.fresnel);
-            if (m.type == MaterialType::Dielectric) {
-                f += ", transmittance " + num(1 - r.fresnel);
-                if (r.refracts)
-                    f += ", refracted direction " + vec(r.refracted);
-                else
-                    f += r.tir ? ", total internal reflection" : ", no refracted ray";
-            }
-            line(in, f);
-        }
+        if (r.has_fresnel) fresnel(r, m.type == MaterialType::Dielectric, in);
         if (r.beer) line(in, "Beer's law over distance " + num(r.t) + ": attenuation " + vec(r.attenuation));
         if (r.depth_limit) line(in, "MaxRecursionDepth reached: no secondary rays");
         for (const RayTrace& c : r.children) ray(c, in, true);
         line(in, "returns " + vec(r.radiance));
+    }
+
+    // The Fresnel equations' terms (rt/shading.h, FresnelTerms).
+    void fresnel(const RayTrace& r, bool dielectric, int indent) {
+        const FresnelTerms& f = r.fresnel;
+        if (dielectric) {
+            line(indent, "Fresnel (dielectric): n1 " + num(f.eta_i) + " -> n2 " + num(f.eta_t) + ", cos theta_i " +
+                             num(f.cos_i) + ", sin^2 theta_t " + num(f.sin_t2) +
+                             (f.sin_t2 < 1 ? ", cos theta_t " + num(f.cos_t) : " (>= 1)"));
+        } else {
+            line(indent, "Fresnel (conductor): n1 1 -> n2 " + num(f.eta_t) + " + " + num(f.k) + "i, cos theta_i " +
+                             num(f.cos_i));
+        }
+        line(indent + 1, "R parallel " + num(f.r_par) + ", R perpendicular " + num(f.r_perp) +
+                             ", reflectance F = (R par + R perp) / 2 = " + num(f.reflectance));
+        if (!dielectric) return;
+        line(indent + 1, "transmittance 1 - F = " + num(1 - f.reflectance));
+        if (r.refracts)
+            line(indent + 1, "refracted direction " + vec(r.refracted));
+        else
+            line(indent + 1, r.tir ? "total internal reflection: no refracted ray" : "no refracted ray");
     }
 
     void light(const LightTrace& l, int indent) {
@@ -107,6 +154,7 @@ public:
 
 private:
     const Scene& scene_;
+    const PixelTrace& trace_;
     std::string out_;
 };
 
@@ -202,6 +250,7 @@ std::string jnode(const Scene& scene, const RayTrace& r) {
                            .field("point", jvec(r.point))
                            .field("geometric_normal", jvec(r.ng))
                            .field("shading_normal", jvec(r.ns))
+                           .field("facing_normal", jvec(r.nf))
                            .field("front", jbool(r.front))
                            .field("material", Object()
                                                   .field("id", jstr(material_id(scene, r.material)))
@@ -215,10 +264,16 @@ std::string jnode(const Scene& scene, const RayTrace& r) {
             o.field("ambient", jvec(r.ambient)).field("lights", "[" + lights + "]").field("local", jvec(r.local));
         }
         if (r.has_fresnel) {
+            const FresnelTerms& t = r.fresnel;
             Object f;
-            f.field("reflectance", jnum(r.fresnel));
+            f.field("n1", jnum(t.eta_i)).field("n2", jnum(t.eta_t));
+            if (m.type == MaterialType::Conductor) f.field("k", jnum(t.k));
+            f.field("cos_i", jnum(t.cos_i));
+            if (m.type == MaterialType::Dielectric) f.field("sin2_t", jnum(t.sin_t2)).field("cos_t", jnum(t.cos_t));
+            f.field("r_parallel", jnum(t.r_par)).field("r_perpendicular", jnum(t.r_perp));
+            f.field("reflectance", jnum(t.reflectance));
             if (m.type == MaterialType::Dielectric)
-                f.field("transmittance", jnum(1 - r.fresnel))
+                f.field("transmittance", jnum(1 - t.reflectance))
                     .field("refracted", r.refracts ? jvec(r.refracted) : "null")
                     .field("total_internal_reflection", jbool(r.tir));
             o.field("fresnel", f.done());
@@ -246,15 +301,15 @@ std::string pixel_text(const uint8_t p[3]) {
 
 std::string trace_text(const Scene& scene, const PixelTrace& t) {
     const Camera& cam = scene.setup.cameras.at(t.camera);
-    TextWriter w(scene);
+    TextWriter w(scene, t);
     w.line(0, "pixel x " + std::to_string(t.x) + ", y " + std::to_string(t.y) + " of camera " +
                   std::to_string(t.camera + 1) + " (" + cam.image_name + ", " + std::to_string(cam.width) + "x" +
                   std::to_string(cam.height) + ", " + kPrecisionName + "), MaxRecursionDepth " +
                   std::to_string(scene.setup.max_recursion_depth) + ", ShadowRayEpsilon " +
                   num(scene.setup.shadow_ray_epsilon));
     w.ray(t.root, 0, false);
-    w.line(0, "pixel: " + vec(t.root.radiance) + " before clamping, " + vec(t.clamped) + " clamped, [" +
-                  pixel_text(t.pixel) + "] after rounding (" + rounding_name(t.rounding) + ")");
+    w.line(0, "pixel [" + pixel_text(t.pixel) + "] after rounding (" + rounding_name(t.rounding) + "), from " +
+                  vec(t.clamped) + " clamped, " + vec(t.root.radiance) + " before clamping");
     return w.take();
 }
 
@@ -271,6 +326,7 @@ std::string trace_json(const Scene& scene, const PixelTrace& t) {
                .field("max_recursion_depth", std::to_string(scene.setup.max_recursion_depth))
                .field("shadow_ray_epsilon", jnum(scene.setup.shadow_ray_epsilon))
                .field("rounding", jstr(rounding_name(t.rounding)))
+               .field("min_weight", jnum(Real(t.min_weight)))
                .field("precision", jstr(kPrecisionName))
                .field("pixel", "[" + pixel_text(t.pixel) + "]")
                .field("radiance", jvec(t.root.radiance))

@@ -29,7 +29,7 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
     const int tiles_y = (cam.height + kTile - 1) / kTile;
     const int tiles = tiles_x * tiles_y;
     std::atomic<int> next{0};
-    const TraceOptions topt{options.cull};
+    const TraceOptions topt{options.cull, options.min_weight};
     const bool watch = static_cast<bool>(options.progress);
 
     int threads = options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency());

@@ -13,15 +13,6 @@ namespace {
 
 constexpr int kNoMedium = -1;
 
-// A reflected or refracted ray is not traced when the factor its radiance would
-// be multiplied by on its way to the pixel (products of MirrorReflectance x
-// Fresnel, 1 - Fresnel and Beer's law along the path) is below this. Every
-// path's weight at one depth sums to at most 1, so at most 1/kMinWeight rays
-// per depth survive: dielectrics facing each other at MaxRecursionDepth 50 stay
-// bounded, while a pruned ray changes a pixel by less than kMinWeight times its
-// radiance (the official scenes render to the same bytes either way).
-constexpr Real kMinWeight = Real(1e-4);
-
 inline Real max_component(Vec3 v) { return max_num(v.x, max_num(v.y, v.z)); }
 inline Real max_abs(Vec3 v) { return max_num(std::fabs(v.x), max_num(std::fabs(v.y), std::fabs(v.z))); }
 
@@ -194,6 +185,7 @@ struct Integrator {
             rec->point = hp.p;
             rec->ng = hp.surf.ng;
             rec->ns = hp.surf.ns;
+            rec->nf = hp.nf;
             rec->front = hp.front;
             rec->material = hp.surf.material;
             rec->shaded = hp.lit;
@@ -257,9 +249,14 @@ struct Integrator {
             const Real cos_i = -dot(ray.dir, nf);
             // The reflected ray, spawned on the side the incoming ray came from.
             auto reflected = [&] { return spawn_ray(p, nf, eps, normalize(ray.dir + nf * (2 * cos_i))); };
-            // Adds factor * L(r) unless the ray's weight is negligible (kMinWeight).
+            // Adds factor * L(r) unless the ray's weight is below TraceOptions::min_weight.
+            // Every path's weight at one depth sums to at most 1, so at most 1/min_weight
+            // rays per depth are traced: dielectrics facing each other at MaxRecursionDepth
+            // 50 stay bounded, while a skipped ray changes a pixel by less than min_weight
+            // times its radiance.
             auto secondary = [&](Vec3 factor, const Ray& r, int r_medium, RayKind kind) {
                 const Real w = weight * max_component(beer) * max_component(factor);
+                const Real min_weight = static_cast<Real>(opt.min_weight);
                 RayTrace* child = nullptr;
                 if (rec) {
                     child = &rec->children.emplace_back();
@@ -268,9 +265,9 @@ struct Integrator {
                     child->ray = r;
                     child->factor = factor;
                     child->weight = w;
-                    child->pruned = !(w >= kMinWeight);
+                    child->pruned = !(w >= min_weight);
                 }
-                if (!(w >= kMinWeight)) return;
+                if (!(w >= min_weight)) return;
                 ++(kind == RayKind::Refraction ? rays.refraction : rays.reflection);
                 color += factor * trace(r, depth + 1, r_medium, false, w, child);
             };
@@ -283,10 +280,11 @@ struct Integrator {
                     secondary(m.mirror, reflected(), kNoMedium, RayKind::Reflection);
                     break;
                 case MaterialType::Conductor: {
-                    const Real fr = fresnel_conductor(cos_i, m.refraction_index, m.absorption_index);
+                    const FresnelTerms f = fresnel_conductor_terms(cos_i, m.refraction_index, m.absorption_index);
+                    const Real fr = f.reflectance;
                     if (rec) {
                         rec->has_fresnel = true;
-                        rec->fresnel = fr;
+                        rec->fresnel = f;
                     }
                     secondary(m.mirror * fr, reflected(), kNoMedium, RayKind::Reflection);
                     break;
@@ -295,14 +293,14 @@ struct Integrator {
                     const int self = static_cast<int>(mat_id);
                     const Real eta_i = front ? Real(1) : m.refraction_index;
                     const Real eta_t = front ? m.refraction_index : Real(1);
-                    Real cos_t = 0;
-                    const Real fr = fresnel_dielectric(cos_i, eta_i, eta_t, &cos_t);
+                    const FresnelTerms f = fresnel_dielectric_terms(cos_i, eta_i, eta_t);
+                    const Real fr = f.reflectance, cos_t = f.cos_t;
                     // Inside this dielectric: the ray reflected off its inside, or refracted in.
                     const int refl_medium = front ? kNoMedium : self;
                     const int refr_medium = front ? self : kNoMedium;
                     if (rec) {
                         rec->has_fresnel = true;
-                        rec->fresnel = fr;
+                        rec->fresnel = f;
                         rec->tir = !(fr < 1) && eta_i > eta_t;
                     }
                     secondary(m.mirror * fr, reflected(), refl_medium, RayKind::Reflection);

@@ -24,6 +24,7 @@ PixelTrace trace_pixel(const Scene& scene, size_t camera, int x, int y, const Tr
     t.x = x;
     t.y = y;
     t.rounding = rounding;
+    t.min_weight = options.min_weight;
     // The render's own calls (render.cpp): the camera's primary ray, trace_primary and
     // quantize; a fresh cache, whose hints never change a result.
     TraceCache cache;
