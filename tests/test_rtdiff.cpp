@@ -1,11 +1,13 @@
 // The image comparison of rt/image_diff.h on hand-made images with known differences,
-// and ./rtdiff on them: figures, exit statuses, --fail-above, folders, bad input (issue 15).
+// its worst pixels, the heatmap and its legend, and ./rtdiff on them: figures, exit
+// statuses, --fail-above, folders, bad input (issue 15).
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
 #include <vector>
 
+#include "rt/bitmap_font.h"
 #include "rt/error.h"
 #include "rt/image.h"
 #include "rt/image_diff.h"
@@ -31,6 +33,42 @@ uint8_t px(const rt::Image& img, int x, int y, int c) {
 }
 
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+// A 10x8 gradient `a` and a copy `b` with seven pixels off by known amounts. By largest
+// channel difference: 8,6 by 30 (A 94 95 96, B 94 65 96); 2,3 and 1,5 by 9; 6,1 by 5
+// (another channel by 3); 5,4 and 3,7 by 2; 7,0 by 1.
+void known_pair(rt::Image& a, rt::Image& b) {
+    a = gradient(10, 8);
+    b = a;
+    at(b, 8, 6, 1) -= 30;
+    at(b, 2, 3, 2) += 9;
+    at(b, 1, 5, 0) += 9;
+    at(b, 6, 1, 0) += 5;
+    at(b, 6, 1, 2) -= 3;
+    at(b, 5, 4, 1) += 2;
+    at(b, 3, 7, 0) -= 2;
+    at(b, 7, 0, 1) += 1;
+}
+
+// The number of pixels of `img` in rows y0 to y1 (excluded; -1: to the bottom) with
+// exactly colour r, g, b.
+size_t count_colour(const rt::Image& img, int y0, uint8_t r, uint8_t g, uint8_t b, int y1 = -1) {
+    size_t n = 0;
+    for (int y = y0; y < (y1 < 0 ? img.height : y1); ++y)
+        for (int x = 0; x < img.width; ++x)
+            if (px(img, x, y, 0) == r && px(img, x, y, 1) == g && px(img, x, y, 2) == b) ++n;
+    return n;
+}
+
+// True when the top left heat.width x heat.height of `img` is `heat`.
+bool starts_with_image(const rt::Image& img, const rt::Image& heat) {
+    if (img.width < heat.width || img.height < heat.height) return false;
+    for (int y = 0; y < heat.height; ++y)
+        for (int x = 0; x < heat.width; ++x)
+            for (int c = 0; c < 3; ++c)
+                if (px(img, x, y, c) != px(heat, x, y, c)) return false;
+    return true;
+}
 
 }  // namespace
 
@@ -132,6 +170,86 @@ TEST(ImageDiff, HeatmapMarksOnlyTheOffPixels) {
                 EXPECT_TRUE(r == g && g == bl && r < 64) << x << "," << y;  // dimmed grey
             }
         }
+}
+
+TEST(ImageDiff, WorstPixelsLargestFirstTiesInReadingOrder) {
+    rt::Image a, b;
+    known_pair(a, b);
+    const std::vector<rt::PixelDiff> w = rt::worst_pixels(a, b);
+    ASSERT_EQ(w.size(), 5u);
+    const int expected[5][3] = {{8, 6, 30}, {2, 3, 9}, {1, 5, 9}, {6, 1, 5}, {5, 4, 2}};  // x, y, diff
+    for (size_t i = 0; i < 5; ++i) {
+        EXPECT_EQ(w[i].x, expected[i][0]) << i;
+        EXPECT_EQ(w[i].y, expected[i][1]) << i;
+        EXPECT_EQ(w[i].diff, expected[i][2]) << i;
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_EQ(w[i].a[c], px(a, w[i].x, w[i].y, c)) << i;
+            EXPECT_EQ(w[i].b[c], px(b, w[i].x, w[i].y, c)) << i;
+        }
+    }
+    EXPECT_EQ(rt::pixel_text(w[0]), "8,6 off by 30: A 94 95 96, B 94 65 96");
+    // All seven when asked for more; none for equal images or different sizes.
+    const std::vector<rt::PixelDiff> all = rt::worst_pixels(a, b, 20);
+    ASSERT_EQ(all.size(), 7u);
+    EXPECT_EQ(all[5].x, 3);
+    EXPECT_EQ(all[5].y, 7);
+    EXPECT_EQ(all[6].diff, 1);
+    EXPECT_TRUE(rt::worst_pixels(a, a).empty());
+    EXPECT_TRUE(rt::worst_pixels(a, gradient(10, 9)).empty());
+    EXPECT_TRUE(rt::worst_pixels(a, b, 0).empty());
+}
+
+TEST(ImageDiff, HeatmapLegendIsAStripBelowTheUnchangedDiffArea) {
+    rt::Image a, b;
+    known_pair(a, b);
+    const rt::Image heat = rt::diff_heatmap(a, b);
+    const rt::Image h = rt::add_heatmap_legend(heat, 1, 30);
+    // A 10-pixel-wide heatmap is padded to the legend's least width, white beside it.
+    EXPECT_EQ(h.width, rt::kHeatmapLegendMinWidth);
+    EXPECT_GT(h.height, heat.height + 20);
+    EXPECT_TRUE(starts_with_image(h, heat));
+    EXPECT_EQ(count_colour(h, 0, 255, 255, 255) - count_colour(h, heat.height, 255, 255, 255),
+              size_t(h.width - heat.width) * size_t(heat.height));
+    // The strip: a caption (black text in its first rows, above the bar), the
+    // within-tolerance swatch, the ramp from yellow to red.
+    EXPECT_GT(count_colour(h, heat.height, 0, 0, 0, heat.height + 11), 100u);
+    EXPECT_GT(count_colour(h, heat.height, 0, 0, 160), 100u);
+    EXPECT_GT(count_colour(h, heat.height, 255, 255, 0), 0u);
+    EXPECT_GT(count_colour(h, heat.height, 255, 0, 0), 0u);
+    // The mark at the largest difference moves with it; a tolerance of 0 has no blue.
+    EXPECT_NE(rt::add_heatmap_legend(heat, 1, 60).rgb, h.rgb);
+    EXPECT_EQ(count_colour(rt::add_heatmap_legend(heat, 0, 30), heat.height, 0, 0, 160), 0u);
+    // A wide heatmap keeps its width; the text grows with it.
+    const rt::Image wide = rt::diff_heatmap(gradient(700, 4), gradient(700, 4));
+    const rt::Image hw = rt::add_heatmap_legend(wide, 1, 0);
+    EXPECT_EQ(hw.width, 700);
+    EXPECT_TRUE(starts_with_image(hw, wide));
+    EXPECT_GT(hw.height - wide.height, h.height - heat.height);
+}
+
+TEST(BitmapFont, GlyphsAreDistinctAndLowerCaseIsUpper) {
+    const std::string chars = "0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZ:,.-+=<>()/%?";
+    const uint8_t ink[3] = {0, 0, 0};
+    auto draw = [&ink](const std::string& text) {
+        rt::Image img;
+        img.width = rt::text_width(text, 2);
+        img.height = rt::kGlyphHeight * 2;
+        img.rgb.assign(size_t(img.width) * size_t(img.height) * 3, 255);
+        rt::draw_text(img, 0, 0, text, 2, ink);
+        return img.rgb;
+    };
+    std::vector<std::vector<uint8_t>> seen;
+    for (char c : chars) {
+        const std::vector<uint8_t> g = draw(std::string(1, c));
+        EXPECT_NE(g, std::vector<uint8_t>(g.size(), 255)) << c;
+        for (const auto& other : seen) EXPECT_NE(g, other) << c;
+        seen.push_back(g);
+    }
+    EXPECT_EQ(draw("max"), draw("MAX"));
+    EXPECT_EQ(draw("~"), draw("?"));
+    EXPECT_EQ(draw(" "), std::vector<uint8_t>(draw(" ").size(), 255));
+    EXPECT_EQ(rt::text_width("AB", 1), 11);
+    EXPECT_EQ(rt::text_width("", 3), 0);
 }
 
 TEST(ImageDiff, ReadImageReadsPngAndPpmAndNamesBadFiles) {
