@@ -70,18 +70,20 @@ std::string psnr_text(double psnr);
 // "x 0..799 y 0..798" (ImageComparison's box), or "none".
 std::string box_text(const ImageComparison& c);
 
-// One image of a folder comparison, as the --html page shows it. The links are relative
+// One pair of images of a comparison, as the --html page shows it. The links are relative
 // to the page (URL-encoded by diff_page_html); empty when there is no such file.
 struct DiffPageRow {
     std::string name;
     ImageComparison c;
-    std::string error;  // not empty: the pair could not be compared (sizes, unreadable)
+    std::string error;             // not empty: the pair could not be compared (sizes, unreadable)
+    std::vector<PixelDiff> worst;  // worst_pixels of the pair
     std::string a_link, b_link, heatmap_link;
 };
 
-// The HTML page of a folder comparison (rtdiff --html): a table of every row in the
-// order given (rtdiff: worst first), then per row the two images and the heatmap side
-// by side, then the images found in one folder only. `a_label`, `b_label`: the folders.
+// The HTML page of a comparison (rtdiff --html; two images are one row): a table of every
+// row in the order given (rtdiff: worst first), then the images found in one folder only,
+// then per row its worst pixels and the two images and the heatmap side by side.
+// `a_label`, `b_label`: the folders (or the images).
 std::string diff_page_html(const std::string& a_label, const std::string& b_label, int tolerance,
                            const std::vector<DiffPageRow>& rows, const std::vector<std::string>& only_a,
                            const std::vector<std::string>& only_b);
