@@ -1,11 +1,13 @@
 // The image comparison of rt/image_diff.h on hand-made images with known differences,
-// and ./rtdiff on them: figures, exit statuses, --fail-above, folders, bad input (issue 15).
+// and ./rtdiff on them: figures, worst pixels, the heatmap and its legend, exit statuses,
+// --fail-above, folders, --html, bad input.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <string>
 #include <vector>
 
+#include "rt/bitmap_font.h"
 #include "rt/error.h"
 #include "rt/image.h"
 #include "rt/image_diff.h"
@@ -31,6 +33,42 @@ uint8_t px(const rt::Image& img, int x, int y, int c) {
 }
 
 bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+// A 10x8 gradient `a` and a copy `b` with seven pixels off by known amounts. By largest
+// channel difference: 8,6 by 30 (A 94 95 96, B 94 65 96); 2,3 and 1,5 by 9; 6,1 by 5
+// (another channel by 3); 5,4 and 3,7 by 2; 7,0 by 1.
+void known_pair(rt::Image& a, rt::Image& b) {
+    a = gradient(10, 8);
+    b = a;
+    at(b, 8, 6, 1) -= 30;
+    at(b, 2, 3, 2) += 9;
+    at(b, 1, 5, 0) += 9;
+    at(b, 6, 1, 0) += 5;
+    at(b, 6, 1, 2) -= 3;
+    at(b, 5, 4, 1) += 2;
+    at(b, 3, 7, 0) -= 2;
+    at(b, 7, 0, 1) += 1;
+}
+
+// The number of pixels of `img` in rows y0 to y1 (excluded; -1: to the bottom) with
+// exactly colour r, g, b.
+size_t count_colour(const rt::Image& img, int y0, uint8_t r, uint8_t g, uint8_t b, int y1 = -1) {
+    size_t n = 0;
+    for (int y = y0; y < (y1 < 0 ? img.height : y1); ++y)
+        for (int x = 0; x < img.width; ++x)
+            if (px(img, x, y, 0) == r && px(img, x, y, 1) == g && px(img, x, y, 2) == b) ++n;
+    return n;
+}
+
+// True when the top left heat.width x heat.height of `img` is `heat`.
+bool starts_with_image(const rt::Image& img, const rt::Image& heat) {
+    if (img.width < heat.width || img.height < heat.height) return false;
+    for (int y = 0; y < heat.height; ++y)
+        for (int x = 0; x < heat.width; ++x)
+            for (int c = 0; c < 3; ++c)
+                if (px(img, x, y, c) != px(heat, x, y, c)) return false;
+    return true;
+}
 
 }  // namespace
 
@@ -134,6 +172,86 @@ TEST(ImageDiff, HeatmapMarksOnlyTheOffPixels) {
         }
 }
 
+TEST(ImageDiff, WorstPixelsLargestFirstTiesInReadingOrder) {
+    rt::Image a, b;
+    known_pair(a, b);
+    const std::vector<rt::PixelDiff> w = rt::worst_pixels(a, b);
+    ASSERT_EQ(w.size(), 5u);
+    const int expected[5][3] = {{8, 6, 30}, {2, 3, 9}, {1, 5, 9}, {6, 1, 5}, {5, 4, 2}};  // x, y, diff
+    for (size_t i = 0; i < 5; ++i) {
+        EXPECT_EQ(w[i].x, expected[i][0]) << i;
+        EXPECT_EQ(w[i].y, expected[i][1]) << i;
+        EXPECT_EQ(w[i].diff, expected[i][2]) << i;
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_EQ(w[i].a[c], px(a, w[i].x, w[i].y, c)) << i;
+            EXPECT_EQ(w[i].b[c], px(b, w[i].x, w[i].y, c)) << i;
+        }
+    }
+    EXPECT_EQ(rt::pixel_text(w[0]), "8,6 off by 30: A 94 95 96, B 94 65 96");
+    // All seven when asked for more; none for equal images or different sizes.
+    const std::vector<rt::PixelDiff> all = rt::worst_pixels(a, b, 20);
+    ASSERT_EQ(all.size(), 7u);
+    EXPECT_EQ(all[5].x, 3);
+    EXPECT_EQ(all[5].y, 7);
+    EXPECT_EQ(all[6].diff, 1);
+    EXPECT_TRUE(rt::worst_pixels(a, a).empty());
+    EXPECT_TRUE(rt::worst_pixels(a, gradient(10, 9)).empty());
+    EXPECT_TRUE(rt::worst_pixels(a, b, 0).empty());
+}
+
+TEST(ImageDiff, HeatmapLegendIsAStripBelowTheUnchangedDiffArea) {
+    rt::Image a, b;
+    known_pair(a, b);
+    const rt::Image heat = rt::diff_heatmap(a, b);
+    const rt::Image h = rt::add_heatmap_legend(heat, 1, 30);
+    // A 10-pixel-wide heatmap is padded to the legend's least width, white beside it.
+    EXPECT_EQ(h.width, rt::kHeatmapLegendMinWidth);
+    EXPECT_GT(h.height, heat.height + 20);
+    EXPECT_TRUE(starts_with_image(h, heat));
+    EXPECT_EQ(count_colour(h, 0, 255, 255, 255) - count_colour(h, heat.height, 255, 255, 255),
+              size_t(h.width - heat.width) * size_t(heat.height));
+    // The strip: a caption (black text in its first rows, above the bar), the
+    // within-tolerance swatch, the ramp from yellow to red.
+    EXPECT_GT(count_colour(h, heat.height, 0, 0, 0, heat.height + 11), 100u);
+    EXPECT_GT(count_colour(h, heat.height, 0, 0, 160), 100u);
+    EXPECT_GT(count_colour(h, heat.height, 255, 255, 0), 0u);
+    EXPECT_GT(count_colour(h, heat.height, 255, 0, 0), 0u);
+    // The mark at the largest difference moves with it; a tolerance of 0 has no blue.
+    EXPECT_NE(rt::add_heatmap_legend(heat, 1, 60).rgb, h.rgb);
+    EXPECT_EQ(count_colour(rt::add_heatmap_legend(heat, 0, 30), heat.height, 0, 0, 160), 0u);
+    // A wide heatmap keeps its width; the text grows with it.
+    const rt::Image wide = rt::diff_heatmap(gradient(700, 4), gradient(700, 4));
+    const rt::Image hw = rt::add_heatmap_legend(wide, 1, 0);
+    EXPECT_EQ(hw.width, 700);
+    EXPECT_TRUE(starts_with_image(hw, wide));
+    EXPECT_GT(hw.height - wide.height, h.height - heat.height);
+}
+
+TEST(BitmapFont, GlyphsAreDistinctAndLowerCaseIsUpper) {
+    const std::string chars = "0123456789ABCDEFGHIJKLMNOPQRSTUVWXYZ:,.-+=<>()/%?";
+    const uint8_t ink[3] = {0, 0, 0};
+    auto draw = [&ink](const std::string& text) {
+        rt::Image img;
+        img.width = rt::text_width(text, 2);
+        img.height = rt::kGlyphHeight * 2;
+        img.rgb.assign(size_t(img.width) * size_t(img.height) * 3, 255);
+        rt::draw_text(img, 0, 0, text, 2, ink);
+        return img.rgb;
+    };
+    std::vector<std::vector<uint8_t>> seen;
+    for (char c : chars) {
+        const std::vector<uint8_t> g = draw(std::string(1, c));
+        EXPECT_NE(g, std::vector<uint8_t>(g.size(), 255)) << c;
+        for (const auto& other : seen) EXPECT_NE(g, other) << c;
+        seen.push_back(g);
+    }
+    EXPECT_EQ(draw("max"), draw("MAX"));
+    EXPECT_EQ(draw("~"), draw("?"));
+    EXPECT_EQ(draw(" "), std::vector<uint8_t>(draw(" ").size(), 255));
+    EXPECT_EQ(rt::text_width("AB", 1), 11);
+    EXPECT_EQ(rt::text_width("", 3), 0);
+}
+
 TEST(ImageDiff, ReadImageReadsPngAndPpmAndNamesBadFiles) {
     TempDir tmp;
     const rt::Image a = gradient(5, 3);
@@ -184,9 +302,40 @@ TEST_F(RtdiffTool, OnePixelOffByTwo) {
     EXPECT_TRUE(contains(r.out, "max 2, ")) << r.out;
     EXPECT_TRUE(contains(r.out, "1 of 200 pixels (0.5000%) off by more than 1")) << r.out;
     EXPECT_TRUE(contains(r.out, "box x 13..13 y 7..7")) << r.out;
+    EXPECT_TRUE(contains(r.out, "trace the worst: ./raytracer --trace 13,7 <scene.json>\n")) << r.out;
     const RunResult t = run({"--tolerance", "2", "a.png", "b.png"});
     EXPECT_EQ(t.exit_code, 0);
     EXPECT_TRUE(contains(t.out, "0 of 200 pixels (0.0000%) off by more than 2")) << t.out;
+}
+
+TEST_F(RtdiffTool, PrintsTheWorstPixelsAndTheCommandThatTracesTheWorst) {
+    rt::Image a, b;
+    known_pair(a, b);
+    rt::write_png(a, tmp_ / "ka.png");
+    rt::write_png(b, tmp_ / "kb.png");
+    const RunResult r = run({"ka.png", "kb.png"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::vector<std::string> lines = split_lines(r.out);
+    ASSERT_EQ(lines.size(), 9u) << r.out;
+    EXPECT_EQ(lines[2], "worst pixels (x,y as raytracer --trace takes them), largest channel difference first:");
+    const std::vector<std::string> expected = {"8,6 off by 30", "2,3 off by 9", "1,5 off by 9", "6,1 off by 5",
+                                               "5,4 off by 2"};
+    for (size_t i = 0; i < expected.size(); ++i) EXPECT_EQ(lines[3 + i].rfind("  " + expected[i] + ": A ", 0), 0u);
+    EXPECT_EQ(lines[3], "  8,6 off by 30: A 94 95 96, B 94 65 96");
+    EXPECT_EQ(lines[8], "trace the worst: ./raytracer --trace 8,6 <scene.json>");
+    // --scene names the scene (one shell word), --camera its camera.
+    const RunResult s = run({"--scene", "../shared/scenes/hw1/simple.json", "ka.png", "kb.png"});
+    EXPECT_TRUE(contains(s.out, "trace the worst: ./raytracer --trace 8,6 ../shared/scenes/hw1/simple.json\n"))
+        << s.out;
+    const RunResult c = run({"--scene", "my scenes/it's.json", "--camera", "2", "ka.png", "kb.png"});
+    EXPECT_TRUE(contains(c.out, "trace the worst: ./raytracer --trace 8,6 --camera 2 'my scenes/it'\\''s.json'\n"))
+        << c.out;
+    // Equal images: no worst pixel, no command.
+    const RunResult same = run({"--scene", "x.json", "ka.png", "ka.png"});
+    EXPECT_EQ(same.exit_code, 0);
+    EXPECT_FALSE(contains(same.out, "worst")) << same.out;
+    EXPECT_FALSE(contains(same.out, "--trace")) << same.out;
+    EXPECT_EQ(run({"--camera", "0", "ka.png", "kb.png"}).exit_code, 2);
 }
 
 TEST_F(RtdiffTool, FailAboveExitsOneOnlyWhenOver) {
@@ -202,16 +351,20 @@ TEST_F(RtdiffTool, HeatmapIsWritten) {
     EXPECT_EQ(r.exit_code, 0) << r.err;
     rt::Image h;
     ASSERT_TRUE(load_png(tmp_ / "h.png", h));
-    EXPECT_EQ(h.rgb, rt::diff_heatmap(a_, b_).rgb);
+    // The heatmap with its legend below it, for this pair's largest difference.
+    const rt::Image heat = rt::diff_heatmap(a_, b_);
+    EXPECT_TRUE(starts_with_image(h, heat));
+    EXPECT_GT(h.height, heat.height);
+    EXPECT_EQ(h.rgb, rt::add_heatmap_legend(heat, 1, 2).rgb);
 }
 
 TEST_F(RtdiffTool, BadInputIsOneLineAndExitOne) {
     write_text(tmp_ / "text.png", "hello\n");
     rt::write_png(gradient(21, 10), tmp_ / "wide.png");
     const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
-        {{"missing.png", "a.png"}, "rtdiff: missing.png: no such file\n"},
-        {{"a.png", "text.png"}, "rtdiff: text.png: not a PNG or PPM image"},
-        {{"a.png", "wide.png"}, "rtdiff: wide.png: 21x10, but a.png is 20x10\n"},
+        {{"missing.png", "a.png"}, "error: missing.png: no such file\n"},
+        {{"a.png", "text.png"}, "error: text.png: not a PNG or PPM image"},
+        {{"a.png", "wide.png"}, "error: wide.png: 21x10, but a.png is 20x10\n"},
     };
     for (const auto& [args, line] : cases) {
         const RunResult r = run(args);
@@ -261,14 +414,22 @@ TEST_F(RtdiffTool, FoldersCompareByNameWorstFirst) {
     const RunResult r = run_program(rtdiff_path(), {a.path(), b.path()});
     EXPECT_EQ(r.exit_code, 0) << r.err;
     const std::vector<std::string> lines = split_lines(r.out);
-    ASSERT_GE(lines.size(), 7u) << r.out;
+    ASSERT_EQ(lines.size(), 9u) << r.out;
+    // Each pair that differs has its worst pixel on the line below it.
     EXPECT_EQ(lines[1].rfind("many.png", 0), 0u) << r.out;
-    EXPECT_EQ(lines[2].rfind("one.png", 0), 0u) << r.out;
-    EXPECT_EQ(lines[3].rfind("same.png", 0), 0u) << r.out;
-    EXPECT_TRUE(contains(lines[2], "x 13..13 y 7..7")) << lines[2];
-    EXPECT_TRUE(contains(lines[3], "inf")) << lines[3];
-    EXPECT_TRUE(contains(r.out, "only in " + a.path() + ": only_a.png\n")) << r.out;
-    EXPECT_TRUE(contains(r.out, "only in " + b.path() + ": only_b.ppm\n")) << r.out;
+    EXPECT_EQ(lines[2], "  worst pixel 0,0 off by 128: A 40 41 42, B 40 41 170") << r.out;
+    EXPECT_EQ(lines[3].rfind("one.png", 0), 0u) << r.out;
+    EXPECT_EQ(lines[4], "  worst pixel 13,7 off by 2: A " + std::to_string(px(a_, 13, 7, 0)) + " " +
+                            std::to_string(px(a_, 13, 7, 1)) + " " + std::to_string(px(a_, 13, 7, 2)) + ", B " +
+                            std::to_string(px(b_, 13, 7, 0)) + " " + std::to_string(px(b_, 13, 7, 1)) + " " +
+                            std::to_string(px(b_, 13, 7, 2)))
+        << r.out;
+    EXPECT_EQ(lines[5].rfind("same.png", 0), 0u) << r.out;
+    EXPECT_TRUE(contains(lines[3], "x 13..13 y 7..7")) << lines[3];
+    EXPECT_TRUE(contains(lines[5], "inf")) << lines[5];
+    EXPECT_EQ(lines[6], "1 image only in " + a.path() + " (not compared): only_a.png") << r.out;
+    EXPECT_EQ(lines[7], "1 image only in " + b.path() + " (not compared): only_b.ppm") << r.out;
+    EXPECT_EQ(lines[8], "3 compared, 1 only in " + a.path() + ", 1 only in " + b.path()) << r.out;
     EXPECT_FALSE(contains(r.out, "notes.txt"));
     // many.png has 5% of its pixels off, one.png 0.5%.
     EXPECT_EQ(run_program(rtdiff_path(), {"--fail-above", "5", a.path(), b.path()}).exit_code, 0);
@@ -332,19 +493,74 @@ TEST_F(RtdiffTool, HtmlPageListsWorstFirstAndLinksExistingFiles) {
         EXPECT_EQ(l.find(' '), std::string::npos) << l;
         EXPECT_TRUE(file_exists(tmp_ / "page/" + url_decode(l))) << l;
     }
-    // The heatmap is the one rt::diff_heatmap draws.
+    // The heatmap is the one rt::diff_heatmap draws, with its legend; the worst pixel is listed.
     rt::Image h;
     ASSERT_TRUE(load_png(tmp_ / "page/heatmaps/one off.png", h));
-    EXPECT_EQ(h.rgb, rt::diff_heatmap(a_, b_).rgb);
-    // Two images: --html is a usage error.
-    const RunResult files = run({"--html", "p2", "a.png", "b.png"});
-    EXPECT_EQ(files.exit_code, 2);
-    EXPECT_EQ(split_lines(files.err).at(0), "error: --html needs two folders");
-    EXPECT_FALSE(file_exists(tmp_ / "p2"));
+    EXPECT_EQ(h.rgb, rt::add_heatmap_legend(rt::diff_heatmap(a_, b_), 1, 2).rgb);
+    EXPECT_TRUE(contains(page, "<li>13,7 off by 2: A ")) << page;
+}
+
+TEST_F(RtdiffTool, HtmlPageForTwoImages) {
+    rt::Image a, b;
+    known_pair(a, b);
+    rt::write_png(a, tmp_ / "ka.png");
+    rt::write_png(b, tmp_ / "kb.png");
+    const RunResult r = run({"--html", "p2", "ka.png", "kb.png"});
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(contains(r.out, "trace the worst: ")) << r.out;  // the text report is printed too
+    const std::string page = read_text(tmp_ / "p2/index.html");
+    EXPECT_TRUE(contains(page, ">ka.png<")) << page;
+    EXPECT_TRUE(contains(page, "<li>8,6 off by 30: A 94 95 96, B 94 65 96</li>")) << page;
+    // A, B and the heatmap, every link a file that exists; the heatmap is rtdiff's, legend included.
+    const std::vector<std::string> srcs = attributes(page, "src");
+    ASSERT_EQ(srcs.size(), 3u) << page;
+    for (const std::string& l : srcs) EXPECT_TRUE(file_exists(tmp_ / "p2/" + url_decode(l))) << l;
+    EXPECT_EQ(url_decode(srcs[0]), "../ka.png");
+    EXPECT_EQ(url_decode(srcs[1]), "../kb.png");
+    rt::Image h;
+    ASSERT_TRUE(load_png(tmp_ / "p2/" + url_decode(srcs[2]), h));
+    EXPECT_EQ(h.rgb, rt::add_heatmap_legend(rt::diff_heatmap(a, b), 1, 30).rgb);
+    // Images of different sizes: bad input, no page.
+    rt::write_png(gradient(11, 8), tmp_ / "wide.png");
+    EXPECT_EQ(run({"--html", "p3", "ka.png", "wide.png"}).exit_code, 1);
+    EXPECT_FALSE(file_exists(tmp_ / "p3/index.html"));
+}
+
+TEST_F(RtdiffTool, ImagesInOneFolderOnlyAreOneLineOrNone) {
+    TempDir a, b;
+    rt::write_png(a_, a / "common.png");
+    rt::write_png(b_, b / "common.png");
+    for (int i = 0; i < 6; ++i) rt::write_png(a_, b / ("b" + std::to_string(i) + ".png"));
+    rt::write_png(a_, a / "mine.png");
+    const RunResult r = run_program(rtdiff_path(), {a.path(), b.path()});
+    EXPECT_EQ(r.exit_code, 0) << r.err;  // images in one folder only do not change the status
+    const std::vector<std::string> lines = split_lines(r.out);
+    ASSERT_EQ(lines.size(), 6u) << r.out;
+    EXPECT_EQ(lines[3], "1 image only in " + a.path() + " (not compared): mine.png");
+    EXPECT_EQ(lines[4], "6 images only in " + b.path() + " (not compared): b0.png, b1.png, b2.png, b3.png, ...");
+    EXPECT_FALSE(contains(r.out, "b4.png")) << r.out;
+    EXPECT_EQ(lines[5], "1 compared, 1 only in " + a.path() + ", 6 only in " + b.path());
+    // --only-common: not a word of them, on stdout or on the page; the same status.
+    const RunResult c = run_program(rtdiff_path(), {"--only-common", "--html", tmp_ / "pc", a.path(), b.path()});
+    EXPECT_EQ(c.exit_code, 0) << c.err;
+    EXPECT_FALSE(contains(c.out, "only")) << c.out;
+    EXPECT_FALSE(contains(c.out, "mine.png")) << c.out;
+    EXPECT_EQ(split_lines(c.out).back(), "1 compared");
+    EXPECT_FALSE(contains(read_text(tmp_ / "pc/index.html"), "mine.png"));
+    // The status of the compared pairs stays: over --fail-above is 1 with --only-common too.
+    EXPECT_EQ(run_program(rtdiff_path(), {"--only-common", "--fail-above", "0.1", a.path(), b.path()}).exit_code, 1);
+    // No image in both folders: nothing was compared, which is not a success.
+    TempDir empty;
+    const RunResult none = run_program(rtdiff_path(), {"--only-common", empty.path(), b.path()});
+    EXPECT_EQ(none.exit_code, 1);
+    EXPECT_EQ(none.err, "error: no image is in both " + empty.path() + " and " + b.path() + "\n");
+    // Options for the other mode are usage errors.
+    EXPECT_EQ(run({"--only-common", "a.png", "b.png"}).exit_code, 2);
+    EXPECT_EQ(run_program(rtdiff_path(), {"--scene", "s.json", a.path(), b.path()}).exit_code, 2);
 }
 
 TEST_F(RtdiffTool, AFolderAndAFileIsBadInput) {
     const RunResult mixed = run({tmp_.path(), "a.png"});
     EXPECT_EQ(mixed.exit_code, 1);
-    EXPECT_EQ(mixed.err, "rtdiff: a.png: not a folder, but " + tmp_.path() + " is one\n");
+    EXPECT_EQ(mixed.err, "error: a.png: not a folder, but " + tmp_.path() + " is one\n");
 }

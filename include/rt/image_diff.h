@@ -2,6 +2,7 @@
 // assert (issue 15), so both measure alike; and a heatmap of where they differ.
 #pragma once
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -31,29 +32,58 @@ struct ImageComparison {
 // max_diff 256, mean_diff 255, pct_over 100, psnr 0, box the whole of `a`.
 ImageComparison compare_images(const Image& a, const Image& b, int tolerance = 1);
 
+// One pixel where `a` and `b` differ: where (column x from the left, row y from the top,
+// 0-based, as `raytracer --trace X,Y` takes them), by how much and both values.
+struct PixelDiff {
+    int x = 0, y = 0;
+    int diff = 0;  // the largest channel difference, in levels
+    uint8_t a[3] = {0, 0, 0}, b[3] = {0, 0, 0};
+};
+
+// The `count` pixels of same-size images that differ most (by their largest channel
+// difference), largest first, ties in reading order (row, then column); only pixels that
+// differ at all, so fewer when fewer do. Empty when the sizes differ.
+std::vector<PixelDiff> worst_pixels(const Image& a, const Image& b, size_t count = 5);
+
+// "216,216 off by 91: A 111 111 111, B 20 0 0".
+std::string pixel_text(const PixelDiff& p);
+
 // An image of a's size showing where and how much `a` and `b` differ, per pixel by the
 // largest channel difference d: equal pixels are a's luminance dimmed to a quarter (to
 // show where one is), d within the tolerance dark blue, d above it yellow (just over)
 // to red (64 levels or more over). Requires same-size images (compare_images().same_size).
 Image diff_heatmap(const Image& a, const Image& b, int tolerance = 1);
 
+// The narrowest heatmap with a legend: a narrower heatmap is padded on the right to this
+// width, so that the legend's text stays readable at its smallest size.
+constexpr int kHeatmapLegendMinWidth = 256;
+
+// `heat` (diff_heatmap's image) with a legend strip below it, as rtdiff writes heatmaps:
+// the largest difference and the tolerance, the colours as swatches and a ramp labelled in
+// levels (0; 1 to the tolerance; just over it to 64 over), a mark at `max_diff`, and what
+// each colour means. `heat` is kept unchanged at the top left; the image is
+// max(heat.width, kHeatmapLegendMinWidth) wide, and white outside `heat` but for the legend.
+Image add_heatmap_legend(const Image& heat, int tolerance, int max_diff);
+
 // "39.18 dB", or "inf" for identical images.
 std::string psnr_text(double psnr);
 // "x 0..799 y 0..798" (ImageComparison's box), or "none".
 std::string box_text(const ImageComparison& c);
 
-// One image of a folder comparison, as the --html page shows it. The links are relative
+// One pair of images of a comparison, as the --html page shows it. The links are relative
 // to the page (URL-encoded by diff_page_html); empty when there is no such file.
 struct DiffPageRow {
     std::string name;
     ImageComparison c;
-    std::string error;  // not empty: the pair could not be compared (sizes, unreadable)
+    std::string error;             // not empty: the pair could not be compared (sizes, unreadable)
+    std::vector<PixelDiff> worst;  // worst_pixels of the pair
     std::string a_link, b_link, heatmap_link;
 };
 
-// The HTML page of a folder comparison (rtdiff --html): a table of every row in the
-// order given (rtdiff: worst first), then per row the two images and the heatmap side
-// by side, then the images found in one folder only. `a_label`, `b_label`: the folders.
+// The HTML page of a comparison (rtdiff --html; two images are one row): a table of every
+// row in the order given (rtdiff: worst first), then the images found in one folder only,
+// then per row its worst pixels and the two images and the heatmap side by side.
+// `a_label`, `b_label`: the folders (or the images).
 std::string diff_page_html(const std::string& a_label, const std::string& b_label, int tolerance,
                            const std::vector<DiffPageRow>& rows, const std::vector<std::string>& only_a,
                            const std::vector<std::string>& only_b);

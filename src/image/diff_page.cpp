@@ -1,4 +1,4 @@
-// The HTML page of a folder comparison (rt/image_diff.h, rtdiff --html).
+// The HTML page of a comparison (rt/image_diff.h, rtdiff --html).
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -63,6 +63,14 @@ std::string figure(const std::string& link, const std::string& caption) {
            "\"></a><figcaption>" + html(caption) + "</figcaption></figure>";
 }
 
+// The pair's worst pixels as a list, or nothing when no pixel differs.
+std::string worst_list(const std::vector<PixelDiff>& worst) {
+    if (worst.empty()) return "";
+    std::string out = "<p>worst pixels (x,y as <code>raytracer --trace X,Y</code> takes them):</p>\n<ul class=worst>";
+    for (const PixelDiff& p : worst) out += "<li>" + html(pixel_text(p)) + "</li>";
+    return out + "</ul>\n";
+}
+
 }  // namespace
 
 std::string diff_page_html(const std::string& a_label, const std::string& b_label, int tolerance,
@@ -81,8 +89,10 @@ std::string diff_page_html(const std::string& a_label, const std::string& b_labe
         "justify-content:center;color:#999}\n"
         "</style></head><body>\n<h1>rtdiff</h1>\n<p>A: <code>" +
         html(a_label) + "</code><br>B: <code>" + html(b_label) + "</code><br>" + std::to_string(rows.size()) +
-        " compared, worst first; a pixel is off when some channel differs by more than " + std::to_string(tolerance) +
-        ". Heatmap: A dimmed where equal, dark blue within the tolerance, yellow to red above it.</p>\n"
+        (rows.size() > 1 ? " compared, worst first" : " compared") +
+        "; a pixel is off when some channel differs by more than " + std::to_string(tolerance) +
+        ". Heatmap: A dimmed where equal, dark blue within the tolerance, yellow to red above it; "
+        "its legend is the strip below it.</p>\n"
         "<table id=summary><tr><th>image</th><th>size</th><th>max</th><th>mean</th><th>% off</th><th>PSNR</th>"
         "<th>box</th></tr>\n";
     for (size_t i = 0; i < rows.size(); ++i) {
@@ -110,7 +120,7 @@ std::string diff_page_html(const std::string& a_label, const std::string& b_labe
              (r.error.empty() ? "max " + std::to_string(r.c.max_diff) + ", " + fmt("%.4f", r.c.pct_over) +
                                     "% off, PSNR " + psnr_text(r.c.psnr) + ", box " + box_text(r.c)
                               : html(r.error)) +
-             "</p>\n<div class=row>" + figure(r.a_link, "A") + figure(r.b_link, "B") +
+             "</p>\n" + worst_list(r.worst) + "<div class=row>" + figure(r.a_link, "A") + figure(r.b_link, "B") +
              figure(r.heatmap_link, "heatmap") + "</div>\n";
     }
     return p + "</body></html>\n";

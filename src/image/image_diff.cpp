@@ -93,32 +93,39 @@ ImageComparison compare_images(const Image& a, const Image& b, int tolerance) {
     return d;
 }
 
-Image diff_heatmap(const Image& a, const Image& b, int tolerance) {
-    Image h;
-    if (!compare_images(a, b, tolerance).same_size) return h;
-    h.width = a.width;
-    h.height = a.height;
-    h.rgb.resize(a.rgb.size());
-    for (size_t p = 0; p < a.rgb.size(); p += 3) {
-        int d = 0;
-        for (size_t c = 0; c < 3; ++c) d = std::max(d, channel_diff(a, b, p + c));
-        uint8_t* out = &h.rgb[p];
-        if (d == 0) {
-            // Rec. 601 luma of a, dimmed: context only.
-            const int luma = (299 * a.rgb[p] + 587 * a.rgb[p + 1] + 114 * a.rgb[p + 2]) / 1000;
-            out[0] = out[1] = out[2] = uint8_t(luma / 4);
-        } else if (d <= tolerance) {
-            out[0] = 0;
-            out[1] = 0;
-            out[2] = 160;
-        } else {
-            const int over = std::min(d - tolerance, 64);  // 1..64
-            out[0] = 255;
-            out[1] = uint8_t(255 - (over - 1) * 255 / 63);
-            out[2] = 0;
+std::vector<PixelDiff> worst_pixels(const Image& a, const Image& b, size_t count) {
+    std::vector<PixelDiff> worst;
+    if (count == 0 || !compare_images(a, b).same_size) return worst;
+    for (int y = 0; y < a.height; ++y) {
+        for (int x = 0; x < a.width; ++x) {
+            const size_t p = (size_t(y) * size_t(a.width) + size_t(x)) * 3;
+            int d = 0;
+            for (size_t c = 0; c < 3; ++c) d = std::max(d, channel_diff(a, b, p + c));
+            // Pixels come in reading order, so one that only ties the last kept loses.
+            if (d == 0 || (worst.size() == count && d <= worst.back().diff)) continue;
+            PixelDiff px;
+            px.x = x;
+            px.y = y;
+            px.diff = d;
+            for (size_t c = 0; c < 3; ++c) {
+                px.a[c] = a.rgb[p + c];
+                px.b[c] = b.rgb[p + c];
+            }
+            if (worst.size() == count) worst.pop_back();
+            // After every kept pixel of the same or a larger difference (they came earlier).
+            const auto at = std::upper_bound(worst.begin(), worst.end(), d,
+                                             [](int diff, const PixelDiff& w) { return diff > w.diff; });
+            worst.insert(at, px);
         }
     }
-    return h;
+    return worst;
+}
+
+std::string pixel_text(const PixelDiff& p) {
+    char buf[128];
+    std::snprintf(buf, sizeof buf, "%d,%d off by %d: A %d %d %d, B %d %d %d", p.x, p.y, p.diff, p.a[0], p.a[1], p.a[2],
+                  p.b[0], p.b[1], p.b[2]);
+    return buf;
 }
 
 Image read_image(const std::string& path) {

@@ -21,18 +21,72 @@ namespace fs = std::filesystem;
 namespace {
 
 const rt::cli::Program kProgram{
-    "rtdiff", "rtdiff 1.0", "usage: rtdiff [--tolerance N] [--heatmap OUT] [--html DIR] [--fail-above P] A B",
+    "rtdiff", "rtdiff 1.0",
+    "usage: rtdiff [--tolerance N] [--heatmap OUT] [--html DIR] [--fail-above P] [--scene FILE [--camera N]]\n"
+    "              [--only-common] A B",
     "Compares image A with image B (PNG or PPM), or every image of the same name in folders A\n"
     "and B: size, largest and mean channel difference, the pixels with some channel off by\n"
-    "more than the tolerance (count, share and bounding box) and PSNR.\n",
-    "exit status: 0 compared (and within --fail-above), 1 bad input or over --fail-above, 2 usage error"};
+    "more than the tolerance (count, share and bounding box) and PSNR; then where: the 5\n"
+    "pixels that differ most (x,y as raytracer --trace takes them, both values) and the\n"
+    "command that traces the worst (folders: the worst pixel of each pair that differs).\n"
+    "Images in one folder only are not compared; one line per folder names them.\n",
+    "exit status: 0 compared (and within --fail-above); 1 bad input, a pair of folders' images\n"
+    "that could not be compared, no image in both folders, or over --fail-above; 2 usage error.\n"
+    "Images in one folder only do not change it."};
+
+// How many of the worst pixels two images' comparison lists.
+constexpr size_t kWorstPixels = 5;
+// How many names the line of the images in one folder only lists before "...".
+constexpr size_t kOnlyNames = 4;
 
 struct Options {
     int tolerance = 1;
     std::string heatmap;               // two images: a PNG; two folders: a folder
     std::optional<double> fail_above;  // percent of pixels
-    std::string html;                  // two folders: a folder for index.html and its heatmaps
+    std::string html;                  // a folder for index.html and its heatmaps
+    std::string scene;                 // two images: the scene of the trace command, when known
+    std::optional<long> camera;        // two images: the trace command's --camera
+    bool only_common = false;          // two folders: say nothing of images in one folder only
 };
+
+// `s` as one shell word: as it is when it holds only characters no shell treats specially,
+// else in single quotes.
+std::string shell_word(const std::string& s) {
+    const bool plain = !s.empty() && s.find_first_not_of(
+                                         "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"
+                                         "0123456789_./+,=:@%-") == std::string::npos;
+    if (plain) return s;
+    std::string out = "'";
+    for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return out + "'";
+}
+
+// The command that traces pixel `p`: "./raytracer --trace X,Y [--camera N] SCENE", the
+// scene a placeholder unless --scene named it.
+std::string trace_command(const rt::PixelDiff& p, const Options& o) {
+    std::string cmd = "./raytracer --trace " + std::to_string(p.x) + "," + std::to_string(p.y);
+    if (o.camera) cmd += " --camera " + std::to_string(*o.camera);
+    return cmd + " " + (o.scene.empty() ? "<scene.json>" : shell_word(o.scene));
+}
+
+void create_folder(const std::string& dir) {
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec) throw rt::InputError(dir + ": cannot create the folder: " + ec.message());
+}
+
+// The --html page's heatmap of image `name`, relative to the page.
+std::string page_heatmap(const std::string& name) { return "heatmaps/" + fs::path(name).stem().string() + ".png"; }
+
+// `file` relative to folder `dir` (both existing), as a page in `dir` links to it.
+std::string relative_to(const std::string& file, const std::string& dir) {
+    return fs::weakly_canonical(file).lexically_relative(fs::weakly_canonical(dir)).generic_string();
+}
+
+// The heatmap as rtdiff writes it: with its legend.
+rt::Image heatmap(const rt::Image& a, const rt::Image& b, const rt::ImageComparison& c) {
+    return rt::add_heatmap_legend(rt::diff_heatmap(a, b, c.tolerance), c.tolerance, c.max_diff);
+}
 
 bool over_limit(const rt::ImageComparison& c, const Options& o) { return o.fail_above && c.pct_over > *o.fail_above; }
 
@@ -48,7 +102,26 @@ int compare_files(const std::string& a_path, const std::string& b_path, const Op
     std::printf("max %d, mean %.4f, %zu of %zu pixels (%.4f%%) off by more than %d, PSNR %s, box %s\n", c.max_diff,
                 c.mean_diff, c.pixels_over, c.pixels, c.pct_over, c.tolerance, rt::psnr_text(c.psnr).c_str(),
                 rt::box_text(c).c_str());
-    if (!o.heatmap.empty()) rt::write_png(rt::diff_heatmap(a, b, o.tolerance), o.heatmap);
+    const std::vector<rt::PixelDiff> worst = rt::worst_pixels(a, b, kWorstPixels);
+    if (!worst.empty()) {
+        std::printf("worst pixels (x,y as raytracer --trace takes them), largest channel difference first:\n");
+        for (const rt::PixelDiff& p : worst) std::printf("  %s\n", rt::pixel_text(p).c_str());
+        std::printf("trace the worst: %s\n", trace_command(worst.front(), o).c_str());
+    }
+    if (!o.heatmap.empty() || !o.html.empty()) {
+        const rt::Image heat = heatmap(a, b, c);
+        if (!o.heatmap.empty()) rt::write_png(heat, o.heatmap);
+        if (!o.html.empty()) {
+            // The page of one row, named as A is.
+            const std::string name = fs::path(a_path).filename().string();
+            create_folder((fs::path(o.html) / "heatmaps").string());
+            rt::write_png(heat, (fs::path(o.html) / page_heatmap(name)).string());
+            const rt::DiffPageRow row{
+                name, c, "", worst, relative_to(a_path, o.html), relative_to(b_path, o.html), page_heatmap(name)};
+            rt::write_file_atomic((fs::path(o.html) / "index.html").string(),
+                                  rt::diff_page_html(a_path, b_path, o.tolerance, {row}, {}, {}));
+        }
+    }
     if (over_limit(c, o)) {
         std::printf("over --fail-above %g%%\n", *o.fail_above);
         return 1;
@@ -77,21 +150,19 @@ std::set<std::string> image_names(const std::string& dir) {
 struct Row {
     std::string name;
     rt::ImageComparison c;
-    std::string error;  // not empty: this pair could not be compared
+    std::string error;                 // not empty: this pair could not be compared
+    std::vector<rt::PixelDiff> worst;  // its worst pixel, when any differs
 };
 
-void create_folder(const std::string& dir) {
-    std::error_code ec;
-    fs::create_directories(dir, ec);
-    if (ec) throw rt::InputError(dir + ": cannot create the folder: " + ec.message());
-}
-
-// The --html page's heatmap of image `name`, relative to the page.
-std::string page_heatmap(const std::string& name) { return "heatmaps/" + fs::path(name).stem().string() + ".png"; }
-
-// `file` relative to folder `dir` (both existing), as a page in `dir` links to it.
-std::string relative_to(const std::string& file, const std::string& dir) {
-    return fs::weakly_canonical(file).lexically_relative(fs::weakly_canonical(dir)).generic_string();
+// "21 images only in B (not compared): a.png, b.png, c.png, d.png, ...": one line for all
+// the images found in folder `dir` only; nothing when there are none.
+void print_only_in(const std::string& dir, const std::vector<std::string>& names) {
+    if (names.empty()) return;
+    std::string list;
+    for (size_t i = 0; i < names.size() && i < kOnlyNames; ++i) list += (i ? ", " : "") + names[i];
+    if (names.size() > kOnlyNames) list += ", ...";
+    std::printf("%zu image%s only in %s (not compared): %s\n", names.size(), names.size() == 1 ? "" : "s", dir.c_str(),
+                list.c_str());
 }
 
 // Writes the --html page: index.html in o.html, beside the heatmaps compare_dirs wrote.
@@ -102,6 +173,7 @@ void write_page(const std::string& a_dir, const std::string& b_dir, const Option
         rt::DiffPageRow p{r.name,
                           r.c,
                           r.error,
+                          r.worst,
                           relative_to((fs::path(a_dir) / r.name).string(), o.html),
                           relative_to((fs::path(b_dir) / r.name).string(), o.html),
                           ""};
@@ -119,10 +191,12 @@ int compare_dirs(const std::string& a_dir, const std::string& b_dir, const Optio
     if (!o.html.empty()) create_folder((fs::path(o.html) / "heatmaps").string());
     std::vector<Row> rows;
     std::vector<std::string> only_a, only_b;
-    for (const std::string& n : a_names)
-        if (!b_names.count(n)) only_a.push_back(n);
-    for (const std::string& n : b_names)
-        if (!a_names.count(n)) only_b.push_back(n);
+    if (!o.only_common) {
+        for (const std::string& n : a_names)
+            if (!b_names.count(n)) only_a.push_back(n);
+        for (const std::string& n : b_names)
+            if (!a_names.count(n)) only_b.push_back(n);
+    }
     int status = 0;
     for (const std::string& n : a_names) {
         if (!b_names.count(n)) continue;
@@ -135,8 +209,10 @@ int compare_dirs(const std::string& a_dir, const std::string& b_dir, const Optio
             if (!r.c.same_size)
                 r.error = "sizes differ: " + std::to_string(a.width) + "x" + std::to_string(a.height) + " vs " +
                           std::to_string(b.width) + "x" + std::to_string(b.height);
-            else if (!o.heatmap.empty() || !o.html.empty()) {
-                const rt::Image heat = rt::diff_heatmap(a, b, o.tolerance);
+            else
+                r.worst = rt::worst_pixels(a, b, 1);
+            if (r.c.same_size && (!o.heatmap.empty() || !o.html.empty())) {
+                const rt::Image heat = heatmap(a, b, r.c);
                 if (!o.heatmap.empty())
                     rt::write_png(heat, (fs::path(o.heatmap) / fs::path(n).stem()).string() + ".png");
                 if (!o.html.empty()) rt::write_png(heat, (fs::path(o.html) / page_heatmap(n)).string());
@@ -169,15 +245,23 @@ int compare_dirs(const std::string& a_dir, const std::string& b_dir, const Optio
         std::printf("%-*s  %9s  %4d  %8.4f  %10.4f  %9s  %s%s\n", w, r.name.c_str(), size.c_str(), r.c.max_diff,
                     r.c.mean_diff, r.c.pct_over, rt::psnr_text(r.c.psnr).c_str(), rt::box_text(r.c).c_str(),
                     bad ? "  OVER" : "");
+        if (!r.worst.empty()) std::printf("  worst pixel %s\n", rt::pixel_text(r.worst.front()).c_str());
     }
-    for (const std::string& n : only_a) std::printf("only in %s: %s\n", a_dir.c_str(), n.c_str());
-    for (const std::string& n : only_b) std::printf("only in %s: %s\n", b_dir.c_str(), n.c_str());
-    std::printf("%zu compared, %zu only in %s, %zu only in %s", rows.size(), only_a.size(), a_dir.c_str(),
-                only_b.size(), b_dir.c_str());
+    print_only_in(a_dir, only_a);
+    print_only_in(b_dir, only_b);
+    std::printf("%zu compared", rows.size());
+    if (!o.only_common)
+        std::printf(", %zu only in %s, %zu only in %s", only_a.size(), a_dir.c_str(), only_b.size(), b_dir.c_str());
     if (o.fail_above) std::printf(", %zu over --fail-above %g%%", over, *o.fail_above);
     std::printf("\n");
     if (over > 0) status = 1;
     if (!o.html.empty()) write_page(a_dir, b_dir, o, rows, only_a, only_b);
+    if (rows.empty()) {
+        // Nothing compared is no success: a wrong folder must not pass a check.
+        std::fflush(stdout);
+        rt::cli::print_error("no image is in both " + a_dir + " and " + b_dir);
+        status = 1;
+    }
     return status;
 }
 
@@ -199,15 +283,23 @@ int main(int argc, char** argv) {
     cli::add_whole(app, "--tolerance", "N",
                    "a pixel is off when some channel differs by more than N levels (default 1)", o.tolerance, 0, 255);
     cli::add_text(app, "--heatmap", "OUT",
-                  "write where and how much the images differ as a PNG (two folders: a folder of them)", o.heatmap,
-                  "a file name");
+                  "write where and how much the images differ as a PNG, its legend below it (two folders: a "
+                  "folder of them)",
+                  o.heatmap, "a file name");
     cli::add_value(app, "--fail-above", "P", "exit status 1 when more than P% of the pixels are off",
                    [&o](const std::string& v) {
                        o.fail_above = cli::number("--fail-above", v, "a percentage from 0 to 100", percent);
                    });
     cli::add_text(app, "--html", "DIR",
-                  "two folders: write DIR/index.html, the images and heatmaps side by side, worst first", o.html,
-                  "a folder name");
+                  "write DIR/index.html: the figures, the images and heatmaps side by side (folders: worst first)",
+                  o.html, "a folder name");
+    cli::add_text(app, "--scene", "FILE",
+                  "two images: the scene they were rendered from, for the command that traces the worst pixel", o.scene,
+                  "a file name");
+    cli::add_value(app, "--camera", "N", "two images: the scene's camera (1-based), for that command too",
+                   [&o](const std::string& v) { o.camera = cli::whole_number("--camera", v, 1, 1 << 30); });
+    app.add_flag("--only-common", o.only_common,
+                 "two folders: compare the images in both and say nothing of those in one folder only");
     app.add_option("files", files);
     app.final_callback([&files] {
         if (files.size() != 2)
@@ -217,18 +309,23 @@ int main(int argc, char** argv) {
 
     try {
         const bool a_dir = is_dir(files[0]), b_dir = is_dir(files[1]);
-        if (a_dir && b_dir) return compare_dirs(files[0], files[1], o);
-        if (!o.html.empty() && !a_dir && !b_dir) return cli::report_usage_error(kProgram, "--html needs two folders");
+        if (a_dir && b_dir) {
+            if (!o.scene.empty() || o.camera)
+                return cli::report_usage_error(kProgram, "--scene and --camera need two images, not folders");
+            return compare_dirs(files[0], files[1], o);
+        }
+        if (o.only_common && !a_dir && !b_dir)
+            return cli::report_usage_error(kProgram, "--only-common needs two folders");
         if (a_dir != b_dir)
             throw rt::InputError((a_dir ? files[1] : files[0]) + ": not a folder, but " +
                                  (a_dir ? files[0] : files[1]) + " is one");
         return compare_files(files[0], files[1], o);
     } catch (const rt::InputError& e) {
-        std::fprintf(stderr, "rtdiff: %s\n", e.what());
+        rt::cli::print_error(e.what());
     } catch (const std::bad_alloc&) {
-        std::fprintf(stderr, "rtdiff: out of memory\n");
+        rt::cli::print_error("out of memory");
     } catch (const std::exception& e) {
-        std::fprintf(stderr, "rtdiff: %s\n", e.what());
+        rt::cli::print_error(e.what());
     }
     return 1;
 }
