@@ -163,7 +163,7 @@ TEST(Trace, CommandLineTracePixelEqualsTheWrittenImageInEveryOfficialScene) {
             << path << " camera " << c + 1 << " pixel " << x << "," << y;
         // The text's last line (folded at 100 characters) names the same value.
         const std::string last = "\npixel [" + std::to_string(expected[0]) + ", " + std::to_string(expected[1]) + ", " +
-                                 std::to_string(expected[2]) + "] after rounding (truncate), from ";
+                                 std::to_string(expected[2]) + "] after rounding (truncate),";
         const size_t at = r.out.rfind("\npixel [");
         EXPECT_TRUE(at != std::string::npos && r.out.compare(at, last.size(), last) == 0) << path << dump(r);
         // Every line fits a terminal of 100 columns.

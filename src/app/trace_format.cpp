@@ -1,6 +1,8 @@
 // A pixel's ray tree as indented text and as JSON (rt/trace.h; the format: docs/trace.md).
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <limits>
 #include <string>
 
 #include "rt/trace.h"
@@ -8,9 +10,23 @@
 namespace rt {
 namespace {
 
-// Text: 10 significant digits, enough to see a channel just under an integer.
+// The shortest decimal that reads back as the same T: a float's 0.37f is "0.37", not
+// the "0.3700000048" of its double.
+template <class T>
+std::string shortest(T v) {
+    char buf[40];
+    for (int digits = std::numeric_limits<T>::digits10; digits <= std::numeric_limits<T>::max_digits10; ++digits) {
+        std::snprintf(buf, sizeof buf, "%.*g", digits, double(v));
+        if (T(std::strtod(buf, nullptr)) == v) break;
+    }
+    return buf;
+}
+
+// Text: in double, 10 significant digits, enough to see a channel just under an
+// integer; in float, every digit the float has (at most 9).
 std::string num(Real v) {
     if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+    if constexpr (sizeof(Real) < sizeof(double)) return shortest(v);
     char buf[40];
     std::snprintf(buf, sizeof buf, "%.10g", double(v));
     return buf;
@@ -63,7 +79,7 @@ public:
         std::string head = std::string(ray_kind_name(r.kind)) + " ray, depth " + std::to_string(r.depth);
         if (child) head += ", weight " + num(r.weight) + ", factor " + vec(r.factor);
         if (r.pruned) {
-            line(indent, head + ": not traced (weight below --min-weight " + num(Real(trace_.min_weight)) + ")");
+            line(indent, head + ": not traced (weight below --min-weight " + shortest(trace_.min_weight) + ")");
             return;
         }
         line(indent, head);
@@ -160,13 +176,9 @@ private:
 
 // --- JSON ------------------------------------------------------------------------------
 
-// Doubles as %.17g (enough to tell any two apart); infinities as null.
-std::string jnum(Real v) {
-    if (!std::isfinite(v)) return "null";
-    char buf[40];
-    std::snprintf(buf, sizeof buf, "%.17g", double(v));
-    return buf;
-}
+// Numbers read back exactly (the shortest decimal of the precision's type); infinities
+// as null.
+std::string jnum(Real v) { return std::isfinite(v) ? shortest(v) : "null"; }
 
 std::string jvec(Vec3 v) { return "[" + jnum(v.x) + ", " + jnum(v.y) + ", " + jnum(v.z) + "]"; }
 
@@ -326,7 +338,7 @@ std::string trace_json(const Scene& scene, const PixelTrace& t) {
                .field("max_recursion_depth", std::to_string(scene.setup.max_recursion_depth))
                .field("shadow_ray_epsilon", jnum(scene.setup.shadow_ray_epsilon))
                .field("rounding", jstr(rounding_name(t.rounding)))
-               .field("min_weight", jnum(Real(t.min_weight)))
+               .field("min_weight", shortest(t.min_weight))
                .field("precision", jstr(kPrecisionName))
                .field("pixel", "[" + pixel_text(t.pixel) + "]")
                .field("radiance", jvec(t.root.radiance))
