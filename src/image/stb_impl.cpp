@@ -1,8 +1,9 @@
 // stb_image_write's implementation, for our PNGs, compiled here from the header of Debian's
 // libstb-dev (or the tarball's third_party/stb/, make dist) instead of linking libstb (the
-// reader, stb_image, is stb_image_impl.cpp's): this way the PNG writer's zlib stream can come from libdeflate through stb's STBIW_ZLIB_COMPRESS hook
-// (stb_image_write.h, "BUILDING"). Without libdeflate (RT_NO_LIBDEFLATE, mk/png.mk)
-// stb's own compressor is used. Either way the pixels are the same, PNG being lossless.
+// reader, stb_image, is stb_image_impl.cpp's): this way the PNG writer's zlib stream can
+// come from libdeflate through stb's STBIW_ZLIB_COMPRESS hook (stb_image_write.h,
+// "BUILDING"). Without libdeflate (RT_NO_LIBDEFLATE, mk/png.mk) stb's own compressor is
+// used. Either way the pixels are the same, PNG being lossless.
 #include <cstdlib>
 
 #include "rt/memory.h"
