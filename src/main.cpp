@@ -1,5 +1,8 @@
 // raytracer: runs the double or the float copy of the program (rt/program.h), as
 // --precision says; that copy parses and checks every option, this one included.
+// Built with RT_NO_FLOAT (make PRECISIONS=double), the program holds the double copy only
+// and refuses --precision float with one error line, exit status 2 (a usage error).
+#include <cstdio>
 #include <cstring>
 
 #include "rt/program.h"
@@ -24,5 +27,13 @@ bool wants_float(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    return wants_float(argc, argv) ? rt_float::raytracer_cli(argc, argv) : rt::raytracer_cli(argc, argv);
+    if (!wants_float(argc, argv)) return rt::raytracer_cli(argc, argv);
+#ifdef RT_NO_FLOAT
+    std::fprintf(stderr,
+                 "error: --precision float: this build has no float precision; "
+                 "build it with make PRECISIONS=\"double float\"\n");
+    return 2;
+#else
+    return rt_float::raytracer_cli(argc, argv);
+#endif
 }

@@ -1,9 +1,9 @@
-// The stb implementations (stb_image_write for our PNGs, stb_image for the tests and
-// tools that read them), compiled here from the headers of Debian's libstb-dev (or the
-// tarball's third_party/stb/, make dist) instead of linking libstb: this way the PNG
-// writer's zlib stream can come from libdeflate through stb's STBIW_ZLIB_COMPRESS hook
-// (stb_image_write.h, "BUILDING"). Without libdeflate (RT_NO_LIBDEFLATE, mk/png.mk)
-// stb's own compressor is used. Either way the pixels are the same, PNG being lossless.
+// stb_image_write's implementation, for our PNGs, compiled here from the header of Debian's
+// libstb-dev (or the tarball's third_party/stb/, make dist) instead of linking libstb (the
+// reader, stb_image, is stb_image_impl.cpp's): this way the PNG writer's zlib stream can
+// come from libdeflate through stb's STBIW_ZLIB_COMPRESS hook (stb_image_write.h,
+// "BUILDING"). Without libdeflate (RT_NO_LIBDEFLATE, mk/png.mk) stb's own compressor is
+// used. Either way the pixels are the same, PNG being lossless.
 #include <cstdlib>
 
 #include "rt/memory.h"
@@ -78,9 +78,6 @@ unsigned char* rt_zlib_compress(unsigned char* data, int data_len, int* out_len,
 
 #define STB_IMAGE_WRITE_IMPLEMENTATION
 #include <stb/stb_image_write.h>
-
-#define STB_IMAGE_IMPLEMENTATION
-#include <stb/stb_image.h>
 
 #if defined(__GNUC__)
 #pragma GCC diagnostic pop
