@@ -224,8 +224,6 @@ std::string dump(const RunResult& r) {
     return "\n--- exit " + std::to_string(r.exit_code) + " --- stderr ---\n" + r.err + "---";
 }
 
-bool contains(const std::string& s, const std::string& x) { return s.find(x) != std::string::npos; }
-
 // The good scene every run renders after the bad one; its image alone, for comparison.
 const std::string& good_scene_bytes_alone() {
     static const std::string bytes = [] {

@@ -162,10 +162,6 @@ std::string lower(std::string s) {
     return s;
 }
 
-bool contains(const std::string& haystack, const std::string& needle) {
-    return haystack.find(needle) != std::string::npos;
-}
-
 bool starts_with(const std::string& s, const std::string& prefix) { return s.compare(0, prefix.size(), prefix) == 0; }
 
 int count_lines_containing(const std::string& text, const std::string& needle) {
@@ -262,6 +258,8 @@ TEST(Cli, EveryOptionTakesItsValueInEverySpelling) {
         {{"--bvh-split", "median"}, {"--bvh-split=median"}},
         {{"--bvh-cost", "2"}, {"--bvh-cost=2"}},
         {{"--bvh-block", "2"}, {"--bvh-block=2"}},
+        {{"--repeat", "2"}, {"--repeat=2"}},
+        {{"--min-weight", "0.5"}, {"--min-weight=0.5"}},
         {{"--precision", "float"}, {"--precision=float"}},
         {{"--precision", "double"}, {"--precision=double"}},
     };
@@ -277,7 +275,9 @@ TEST(Cli, EveryOptionTakesItsValueInEverySpelling) {
             ASSERT_TRUE(is_png(out + "/s.png", 8, 8)) << join(args);
             json doc = json::parse(read_text(out + ".json"));
             json& im = doc["images"][0];
-            for (const char* varies : {"seconds", "rays_per_second", "peak_rss_bytes", "image"}) im.erase(varies);
+            for (const char* varies :
+                 {"seconds", "seconds_min", "seconds_max", "rays_per_second", "peak_rss_bytes", "image"})
+                im.erase(varies);
             stats.push_back(doc.dump());
             if (i > 0) {
                 EXPECT_TRUE(read_text(out + "/s.png") == read_text(tmp / "out0/s.png")) << join(args);
@@ -304,9 +304,10 @@ TEST(Cli, UsageErrorsAreOneLinePlusTheUsage) {
     TempDir tmp;
     write_scene(tmp.path(), "scene.json", sample_scene());
     const std::string usage =
-        "usage: raytracer [-o DIR] [-j N] [--precision double|float] [--cull|--no-cull] [--rounding truncate|nearest] "
-        "[--min-weight W]\n"
-        "                 [--repeat N] [--stats FILE] [-q] [--strict] [measurement options] scene.json|scene.xml...\n"
+        "usage: raytracer [-o DIR] [-j N] [--precision double|float] [--cull|--no-cull]\n"
+        "                 [--rounding truncate|nearest] [--min-weight W] [--stats FILE] [-q] [--strict]\n"
+        "                 [--repeat N] [--max-depth N] [--epsilon-scale F] [--bvh-... (measurements)]\n"
+        "                 scene.json|scene.xml...\n"
         "       raytracer --trace X,Y [--camera N] [--trace-json FILE] [options] scene.json|scene.xml";
     const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
         {{"--no-such-option", "scene.json"}, "unknown option '--no-such-option'"},
@@ -315,6 +316,8 @@ TEST(Cli, UsageErrorsAreOneLinePlusTheUsage) {
         {{"--rounding=up", "scene.json"}, "--rounding takes truncate or nearest, got 'up'"},
         {{"--stats=", "scene.json"}, "--stats needs a file name"},
         {{"--max-depth=x", "scene.json"}, "--max-depth needs a whole number from 0 to 10000, got 'x'"},
+        {{"--repeat", "0", "scene.json"}, "--repeat needs a whole number from 1 to 1000, got '0'"},
+        {{"--repeat", "2", "--trace", "1,1", "scene.json"}, "--repeat times renders; --trace renders nothing"},
         {{"--epsilon-scale", "0", "scene.json"}, "--epsilon-scale needs a positive number, got '0'"},
         {{"--bvh-cost", "200", "scene.json"}, "--bvh-cost needs a number from 0.1 to 100, got '200'"},
         {{"--bvh-split", "fast", "scene.json"}, "--bvh-split takes sah or median, got 'fast'"},

@@ -175,8 +175,6 @@ size_t triangle_count(const rt::SceneDesc& d) {
     return n;
 }
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
-
 bool any_contains(const std::vector<std::string>& lines, const std::string& part) {
     for (const std::string& l : lines)
         if (contains(l, part)) return true;

@@ -38,8 +38,6 @@ json every_kind_scene() {
 
 std::string dump(const RunResult& r) { return "\n--- exit " + std::to_string(r.exit_code) + "\n" + r.err; }
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
-
 // Renders `scene` (written as k.json) in a fresh folder with `flags`.
 struct Rendered {
     TempDir tmp;

@@ -25,6 +25,7 @@
 
 #include "rt/error.h"
 #include "rt/ply.h"
+#include "test_support.h"
 
 namespace {
 
@@ -183,8 +184,6 @@ std::string error_of(const std::string& path) {
         return std::string("<wrong exception type: ") + e.what() + ">";
     }
 }
-
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
 
 // Checks an InputError message: one line, "<path>: <place>..." and mentions `what`.
 // `place` is e.g. "byte " or "line 13:".

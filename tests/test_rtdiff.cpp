@@ -32,8 +32,6 @@ uint8_t px(const rt::Image& img, int x, int y, int c) {
     return img.rgb[(size_t(y) * size_t(img.width) + size_t(x)) * 3 + size_t(c)];
 }
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
-
 // A 10x8 gradient `a` and a copy `b` with seven pixels off by known amounts. By largest
 // channel difference: 8,6 by 30 (A 94 95 96, B 94 65 96); 2,3 and 1,5 by 9; 6,1 by 5
 // (another channel by 3); 5,4 and 3,7 by 2; 7,0 by 1.

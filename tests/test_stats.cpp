@@ -353,6 +353,65 @@ TEST(Stats, UnwritableStatsFileIsAnError) {
 
 // The command's pipeline as a library function: one record per image written, the
 // figures --stats writes; a bad scene fails alone.
+// The median of an odd count is the middle sample, of an even count the mean of the
+// middle two; min and max are the extremes; order does not matter.
+TEST(Stats, TimingOfSamples) {
+    const rt::Timing odd = rt::timing_of({0.3, 0.1, 0.2});
+    EXPECT_EQ(odd.median, 0.2);
+    EXPECT_EQ(odd.min, 0.1);
+    EXPECT_EQ(odd.max, 0.3);
+    const rt::Timing even = rt::timing_of({4, 1, 3, 2});
+    EXPECT_EQ(even.median, 2.5);
+    EXPECT_EQ(even.min, 1);
+    EXPECT_EQ(even.max, 4);
+    const rt::Timing one = rt::timing_of({0.5});
+    EXPECT_EQ(one.median, 0.5);
+    EXPECT_EQ(one.min, 0.5);
+    EXPECT_EQ(one.max, 0.5);
+    const rt::Timing none = rt::timing_of({});
+    EXPECT_EQ(none.median, 0);
+    EXPECT_EQ(none.max, 0);
+}
+
+// --repeat N: every phase timed N times (median, fastest, slowest on the summary line and
+// in --stats), the warnings printed once, the image written once and byte-identical to a
+// single run's.
+TEST(Stats, RepeatTimesEveryPhaseAndWritesTheImageOnce) {
+    TempDir dir;
+    const std::string scene = write_scene(dir.path(), 48, 27);
+    json with_typo = json::parse(read_text(scene));
+    with_typo["Scene"]["MaxRecursionDeph"] = "6";
+    write_text(scene, with_typo.dump(2));
+    RunResult r;
+    const json doc = run_stats({"--repeat", "4", "-j", "2"}, scene, dir, &r);
+    ASSERT_EQ(doc.at("images").size(), 1u) << r.err;
+    const json& im = doc.at("images")[0];
+    EXPECT_EQ(im.at("repeat"), 4);
+    for (const char* k : {"parse", "ply", "setup", "bvh", "render", "write"}) {
+        const double lo = im.at("seconds_min").at(k), mid = im.at("seconds").at(k), hi = im.at("seconds_max").at(k);
+        EXPECT_LE(lo, mid) << k;
+        EXPECT_LE(mid, hi) << k;
+    }
+    // Four renders: four different durations, to the nanosecond.
+    EXPECT_LT(im.at("seconds_min").at("render").get<double>(), im.at("seconds_max").at("render").get<double>());
+    EXPECT_LT(im.at("seconds_min").at("parse").get<double>(), im.at("seconds_max").at("parse").get<double>());
+    // Written once: one sample.
+    EXPECT_EQ(im.at("seconds_min").at("write"), im.at("seconds").at("write"));
+    EXPECT_EQ(im.at("seconds_max").at("write"), im.at("seconds").at("write"));
+    EXPECT_EQ(im.at("rays").at("camera"), 48 * 27);  // one run's rays, not four runs'
+    const std::vector<std::string> lines = split_lines(r.err);
+    ASSERT_EQ(lines.size(), 2u) << r.err;
+    EXPECT_EQ(lines[0],
+              "warning: " + scene + ": /Scene/MaxRecursionDeph: unknown key ignored (did you mean MaxRecursionDepth?)");
+    EXPECT_TRUE(contains(lines[1], ", median (fastest..slowest) of 4 runs: load ")) << lines[1];
+    EXPECT_TRUE(contains(lines[1], "s (written once), 1 warning")) << lines[1];
+    EXPECT_EQ(list_files(dir.path()), (std::vector<std::string>{"out.png", "scene.json", "stats.json", "tetra.ply"}));
+    // The same bytes as one run's image.
+    const RunResult once = run_raytracer({"-q", "-o", dir / "once", scene});
+    ASSERT_EQ(once.exit_code, 0) << once.err;
+    EXPECT_EQ(read_text(dir / "out.png"), read_text(dir / "once/out.png"));
+}
+
 TEST(Stats, RunScenesReturnsARecordPerImage) {
     TempDir dir;
     const std::string a = write_scene(dir.path(), 32, 16, "a.png");

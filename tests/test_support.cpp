@@ -216,6 +216,8 @@ std::vector<std::string> split_lines(const std::string& text) {
     return lines;
 }
 
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
 std::vector<std::string> list_files(const std::string& dir) {
     std::vector<std::string> files;
     std::error_code ec;

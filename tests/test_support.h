@@ -84,6 +84,7 @@ std::string read_text(const std::string& path);
 // Small file utilities.
 bool file_exists(const std::string& path);
 std::vector<std::string> split_lines(const std::string& text);  // no trailing empty line
+bool contains(const std::string& text, const std::string& part);
 // Regular files (and anything else that is not a folder) under `dir`, recursively,
 // as sorted paths relative to `dir`.
 std::vector<std::string> list_files(const std::string& dir);

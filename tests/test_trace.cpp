@@ -72,8 +72,6 @@ std::string dump(const RunResult& r) {
            "---";
 }
 
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
-
 // ./raytracer `options` --trace `pixel` ("x,y") --trace-json `json_path` `scene`: the run,
 // and its JSON trace parsed (null when the run failed: callers assert the exit code).
 struct Traced {

@@ -23,14 +23,25 @@ struct RunOptions {
     bool progress = true;      // a progress line while each image renders, when stderr is a terminal
     int max_depth = -1;        // >= 0: overrides every scene's MaxRecursionDepth
     double epsilon_scale = 1;  // multiplies every scene's ShadowRayEpsilon
+    int repeat = 1;            // --repeat: each scene loaded, built and each image rendered this
+                               // many times, for timing; every image is written once
 };
+
+// The seconds a phase took over the --repeat runs.
+struct Timing {
+    double median = 0, min = 0, max = 0;
+};
+
+// The median (of an even count: the mean of the middle two), fastest and slowest of
+// `samples`; all zero when there are none.
+Timing timing_of(std::vector<double> samples);
 
 // Seconds spent on a scene before its images render; shared by all its images.
 struct SceneTimes {
-    double parse = 0;  // reading and parsing the scene file, PLY files excluded
-    double ply = 0;    // reading PLY files
-    double setup = 0;  // render data: vertices copied, normals (build_scene without the BVH)
-    double bvh = 0;    // BVH build
+    Timing parse;  // reading and parsing the scene file, PLY files excluded
+    Timing ply;    // reading PLY files
+    Timing setup;  // render data: vertices copied, normals (build_scene without the BVH)
+    Timing bvh;    // BVH build
 };
 
 // What a built scene holds, as the per-image summary line and --stats report it.
@@ -46,6 +57,7 @@ struct SceneFigures {
 };
 
 // The figures of one scene's settings and build; the one reader of rt::Scene's counts.
+// The BVH's build time is the scene's own (one sample).
 SceneFigures scene_figures(const Scene& scene, const SceneTimes& seconds);
 
 // One image written.
@@ -54,8 +66,9 @@ struct ImageRecord {
     size_t camera = 0;         // 1-based
     int width = 0, height = 0;
     SceneFigures figures;
-    double render = 0, write = 0;  // seconds
-    RenderStats render_stats;
+    int repeat = 1;            // the runs the times are over (--repeat)
+    Timing render, write;      // seconds; written once, so write is one sample
+    RenderStats render_stats;  // of the last run (every run traces the same rays)
     bool cull = true;
     BvhBuildOptions bvh;
     uint64_t peak_rss = 0;  // bytes, of the whole process so far

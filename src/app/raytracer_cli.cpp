@@ -18,9 +18,10 @@ namespace {
 
 const cli::Program kProgram{
     "raytracer", "raytracer 1.0",
-    "usage: raytracer [-o DIR] [-j N] [--precision double|float] [--cull|--no-cull] [--rounding truncate|nearest] "
-    "[--min-weight W]\n"
-    "                 [--repeat N] [--stats FILE] [-q] [--strict] [measurement options] scene.json|scene.xml...\n"
+    "usage: raytracer [-o DIR] [-j N] [--precision double|float] [--cull|--no-cull]\n"
+    "                 [--rounding truncate|nearest] [--min-weight W] [--stats FILE] [-q] [--strict]\n"
+    "                 [--repeat N] [--max-depth N] [--epsilon-scale F] [--bvh-... (measurements)]\n"
+    "                 scene.json|scene.xml...\n"
     "       raytracer --trace X,Y [--camera N] [--trace-json FILE] [options] scene.json|scene.xml",
     "Renders every camera of each scene file (JSON, or the course's older XML format when the\n"
     "name ends in .xml) to the image its ImageName names: PNG (.png) or binary PPM (.ppm).\n",
@@ -74,6 +75,10 @@ int raytracer_cli(int argc, char** argv) {
         "--strict", o.strict,
         "treat every warning (unknown key, skipped triangle, ...) as an error: exit 1, no image of that scene");
     app.option_defaults()->group("for measurements (the defaults are the scene's values and the tuned BVH)");
+    cli::add_whole(app, "--repeat", "N",
+                   "load, build and render each scene N times (1..1000); the summary line and --stats give the "
+                   "median, fastest and slowest run of each phase; every image is written once",
+                   o.repeat, 1, 1000);
     cli::add_whole(app, "--max-depth", "N", "override every scene's MaxRecursionDepth (0..10000)", o.max_depth, 0,
                    10000);
     cli::add_number(app, "--epsilon-scale", "F", "multiply every scene's ShadowRayEpsilon by F (> 0)", o.epsilon_scale,
@@ -98,6 +103,7 @@ int raytracer_cli(int argc, char** argv) {
         if (trace && scenes.size() > 1) cli::usage_error("--trace takes one scene file");
         if (!trace && (camera_given || !request.json_path.empty()))
             cli::usage_error("--camera and --trace-json need --trace");
+        if (trace && o.repeat != 1) cli::usage_error("--repeat times renders; --trace renders nothing");
     });
     if (const auto status = cli::parse(app, kProgram, argc, argv)) return *status;
     // main() picked this copy of the program from the same arguments (precision_of).

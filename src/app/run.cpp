@@ -2,6 +2,7 @@
 // render -> write -> record. See rt/run.h.
 #include "rt/run.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -41,8 +42,8 @@ void apply_overrides(Scene& scene, const RunOptions& o) {
 struct LoadedScene {
     Scene scene;
     SceneFigures figures;
-    double load_seconds = 0;  // parse + PLY + setup: the summary line's "load"
-    size_t warnings = 0;      // warnings its loading raised (the summary line counts them)
+    Timing load;          // parse + PLY + setup: the summary line's "load"
+    size_t warnings = 0;  // warnings its loading raised (the summary line counts them)
 };
 
 // Reports the warnings of a scene: on stderr as "warning: ..." unless quiet; under
@@ -57,16 +58,15 @@ bool report_warnings(const std::vector<std::string>& warnings, const RunOptions&
     return !(o.strict && !warnings.empty());
 }
 
-// Loads and builds one scene file; prints its warnings (unless quiet) and its error
+// Loads and builds one scene file once; prints its warnings (unless quiet) and its error
 // line, and returns nothing on bad input (under --strict, a warning is bad input). Every
-// ImageName is checked before anything is rendered: .png or .ppm.
-std::optional<LoadedScene> load(const std::string& scene_path, const RunOptions& o) {
+// ImageName is checked before anything is rendered: .png or .ppm. The times are one sample.
+std::optional<LoadedScene> load_once(const std::string& scene_path, const RunOptions& o) {
     const auto t0 = std::chrono::steady_clock::now();
     try {
         SceneDesc desc = load_scene(scene_path);
-        SceneTimes times;
-        times.ply = desc.ply_seconds;
-        times.parse = seconds_since(t0) - desc.ply_seconds;
+        const double ply_s = desc.ply_seconds;
+        const double parse_s = seconds_since(t0) - ply_s;
         const size_t warnings = desc.warnings.size();
         if (!report_warnings(desc.warnings, o)) return std::nullopt;
         bool names_ok = true;
@@ -79,13 +79,16 @@ std::optional<LoadedScene> load(const std::string& scene_path, const RunOptions&
         }
         if (!names_ok) return std::nullopt;
         const auto b0 = std::chrono::steady_clock::now();
-        LoadedScene s{build_scene(std::move(desc), o.bvh), {}, 0, warnings};
+        LoadedScene s{build_scene(std::move(desc), o.bvh), {}, {}, warnings};
         const double build_s = seconds_since(b0);
         const double total_s = seconds_since(t0);
         apply_overrides(s.scene, o);
+        SceneTimes times;
+        times.parse = timing_of({parse_s});
+        times.ply = timing_of({ply_s});
         s.figures = scene_figures(s.scene, times);
-        s.figures.seconds.setup = build_s - s.figures.seconds.bvh;
-        s.load_seconds = total_s - s.figures.seconds.bvh;
+        s.figures.seconds.setup = timing_of({build_s - s.figures.seconds.bvh.median});
+        s.load = timing_of({total_s - s.figures.seconds.bvh.median});
         if (const size_t n = s.figures.degenerate; n > 0) {
             ++s.warnings;
             if (!report_warnings({scene_path + ": skipped " + count_of(n, "degenerate triangle")}, o))
@@ -103,32 +106,79 @@ std::optional<LoadedScene> load(const std::string& scene_path, const RunOptions&
     return std::nullopt;
 }
 
-// Renders and writes camera `c` (0-based) of a loaded scene; returns its record.
-// Throws on failure (InputError for an unwritable path).
+// Loads and builds a scene --repeat times (the warnings printed once); the times are over
+// all runs, the scene is the last run's (the one in memory: runs are not kept side by side).
+std::optional<LoadedScene> load(const std::string& scene_path, const RunOptions& o) {
+    std::optional<LoadedScene> s = load_once(scene_path, o);
+    if (!s || o.repeat <= 1) return s;
+    std::vector<double> parse, ply, setup, bvh, total;
+    const auto add = [&](const LoadedScene& l) {
+        parse.push_back(l.figures.seconds.parse.median);
+        ply.push_back(l.figures.seconds.ply.median);
+        setup.push_back(l.figures.seconds.setup.median);
+        bvh.push_back(l.figures.seconds.bvh.median);
+        total.push_back(l.load.median);
+    };
+    add(*s);
+    RunOptions again = o;  // the first run reported the warnings
+    again.quiet = true;
+    again.strict = false;
+    for (int run = 1; run < o.repeat; ++run) {
+        s.reset();
+        s = load_once(scene_path, again);
+        if (!s) return s;
+        add(*s);
+    }
+    s->figures.seconds = SceneTimes{timing_of(parse), timing_of(ply), timing_of(setup), timing_of(bvh)};
+    s->load = timing_of(total);
+    return s;
+}
+
+// "0.123s", or with --repeat "0.123s (0.120..0.131)": the median (fastest..slowest).
+std::string seconds_text(const Timing& t, int repeat) {
+    char buf[96];
+    if (repeat <= 1)
+        std::snprintf(buf, sizeof buf, "%.3fs", t.median);
+    else
+        std::snprintf(buf, sizeof buf, "%.3fs (%.3f..%.3f)", t.median, t.min, t.max);
+    return buf;
+}
+
+// Renders camera `c` (0-based) of a loaded scene --repeat times and writes it once;
+// returns its record. Throws on failure (InputError for an unwritable path).
 ImageRecord render_camera(const std::string& scene_path, const LoadedScene& s, size_t c, const std::string& out,
                           const RunOptions& o) {
     const Camera& cam = s.scene.setup.cameras[c];
     make_parent_folders(out);
     RenderOptions ropt = o.render;
     app::ProgressLine progress(o.progress && !o.quiet && app::stderr_is_terminal());
-    if (progress.enabled()) {
-        progress.start(out);
-        ropt.progress = [&progress](int done, int total) { progress.update(done, total); };
+    if (progress.enabled()) ropt.progress = [&progress](int done, int total) { progress.update(done, total); };
+    ImageRecord r{scene_path, out, c + 1, cam.width,     cam.height, s.figures, o.repeat,
+                  {},         {},  {},    o.render.cull, o.bvh,      0};
+    std::vector<double> renders;
+    Image img;
+    for (int run = 0; run < o.repeat; ++run) {
+        progress.start(o.repeat > 1 ? out + " (run " + std::to_string(run + 1) + " of " + std::to_string(o.repeat) + ")"
+                                    : out);
+        const auto r0 = std::chrono::steady_clock::now();
+        img = render(s.scene, c, ropt, &r.render_stats);
+        renders.push_back(seconds_since(r0));
+        progress.clear();
     }
-    ImageRecord r{scene_path, out, c + 1, cam.width, cam.height, s.figures, 0, 0, {}, o.render.cull, o.bvh, 0};
-    const auto r0 = std::chrono::steady_clock::now();
-    const Image img = render(s.scene, c, ropt, &r.render_stats);
-    r.render = seconds_since(r0);
-    progress.clear();
+    r.render = timing_of(renders);
     const auto w0 = std::chrono::steady_clock::now();
     write_image(img, out);
-    r.write = seconds_since(w0);
+    r.write = timing_of({seconds_since(w0)});
     if (!o.quiet) {
         const std::string warned = s.warnings == 0 ? "" : ", " + count_of(s.warnings, "warning");
-        std::fprintf(stderr, "%s: %dx%d, %s, %s, %s, load %.3fs, bvh %.3fs, render %.3fs, write %.3fs%s\n", out.c_str(),
+        const std::string runs =
+            o.repeat <= 1 ? "" : "median (fastest..slowest) of " + std::to_string(o.repeat) + " runs: ";
+        std::fprintf(stderr, "%s: %dx%d, %s, %s, %s, %sload %s, bvh %s, render %s, write %.3fs%s%s\n", out.c_str(),
                      cam.width, cam.height, kPrecisionName, count_of(s.figures.triangles, "triangle").c_str(),
-                     count_of(s.figures.spheres, "sphere").c_str(), s.load_seconds, s.figures.seconds.bvh, r.render,
-                     r.write, warned.c_str());
+                     count_of(s.figures.spheres, "sphere").c_str(), runs.c_str(),
+                     seconds_text(s.load, o.repeat).c_str(), seconds_text(s.figures.seconds.bvh, o.repeat).c_str(),
+                     seconds_text(r.render, o.repeat).c_str(), r.write.median, o.repeat <= 1 ? "" : " (written once)",
+                     warned.c_str());
     }
     r.peak_rss = app::peak_rss_bytes();
     return r;
@@ -176,8 +226,16 @@ SceneFigures scene_figures(const Scene& scene, const SceneTimes& seconds) {
     f.max_recursion_depth = scene.setup.max_recursion_depth;
     f.shadow_ray_epsilon = double(scene.setup.shadow_ray_epsilon);
     f.seconds = seconds;
-    f.seconds.bvh = double(scene.report.build_seconds);
+    f.seconds.bvh = timing_of({double(scene.report.build_seconds)});
     return f;
+}
+
+Timing timing_of(std::vector<double> samples) {
+    if (samples.empty()) return {};
+    std::sort(samples.begin(), samples.end());
+    const size_t n = samples.size();
+    const double median = n % 2 == 1 ? samples[n / 2] : (samples[n / 2 - 1] + samples[n / 2]) / 2;
+    return {median, samples.front(), samples.back()};
 }
 
 RunReport run_scenes(const std::vector<std::string>& scene_paths, const RunOptions& options) {
@@ -187,7 +245,7 @@ RunReport run_scenes(const std::vector<std::string>& scene_paths, const RunOptio
 }
 
 int run_trace(const std::string& scene_path, const RunOptions& o, const PixelTraceRequest& req) {
-    const std::optional<LoadedScene> s = load(scene_path, o);
+    const std::optional<LoadedScene> s = load_once(scene_path, o);
     if (!s) return 1;
     const std::vector<Camera>& cameras = s->scene.setup.cameras;
     if (req.camera < 1 || req.camera > cameras.size())

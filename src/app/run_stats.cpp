@@ -96,14 +96,22 @@ std::string stats_json(const std::vector<ImageRecord>& images, const std::string
         j["cull"] = r.cull;
         j["max_recursion_depth"] = f.max_recursion_depth;
         j["shadow_ray_epsilon"] = f.shadow_ray_epsilon;
-        j["seconds"] = {{"parse", f.seconds.parse}, {"ply", f.seconds.ply}, {"setup", f.seconds.setup},
-                        {"bvh", f.seconds.bvh},     {"render", r.render},   {"write", r.write}};
+        // The medians over the --repeat runs, then the fastest and the slowest run.
+        j["repeat"] = r.repeat;
+        const auto seconds = [&](double Timing::*which) {
+            return ordered_json{{"parse", f.seconds.parse.*which}, {"ply", f.seconds.ply.*which},
+                                {"setup", f.seconds.setup.*which}, {"bvh", f.seconds.bvh.*which},
+                                {"render", r.render.*which},       {"write", r.write.*which}};
+        };
+        j["seconds"] = seconds(&Timing::median);
+        j["seconds_min"] = seconds(&Timing::min);
+        j["seconds_max"] = seconds(&Timing::max);
         j["rays"] = {{"camera", rays.camera},
                      {"shadow", rays.shadow},
                      {"reflection", rays.reflection},
                      {"refraction", rays.refraction},
                      {"total", rays.total()}};
-        j["rays_per_second"] = r.render > 0 ? double(rays.total()) / r.render : 0.0;
+        j["rays_per_second"] = r.render.median > 0 ? double(rays.total()) / r.render.median : 0.0;
         j["bvh"] = {{"nodes", f.bvh_nodes},
                     {"depth", f.bvh_depth},
                     {"max_leaf", r.bvh.max_leaf},

@@ -13,15 +13,42 @@ namespace rtcli {
 
 namespace {
 
+// Lines of --help are at most this long (a terminal's width).
+constexpr size_t kHelpWidth = 100;
+// Option descriptions start in this column (the names' column, their two-space indent included).
+constexpr size_t kNameColumn = 28;
+
+// Breaks each line longer than kHelpWidth at its last space that fits, the rest indented
+// to the descriptions' column.
+std::string fold_lines(const std::string& text) {
+    std::string out;
+    size_t start = 0;
+    while (start < text.size()) {
+        size_t end = text.find('\n', start);
+        if (end == std::string::npos) end = text.size();
+        std::string line = text.substr(start, end - start);
+        while (line.size() > kHelpWidth) {
+            const size_t cut = line.rfind(' ', kHelpWidth);
+            if (cut == std::string::npos || cut <= kNameColumn) break;
+            out += line.substr(0, cut) + "\n";
+            line = std::string(kNameColumn, ' ') + line.substr(cut + 1);
+        }
+        out += line;
+        if (end < text.size()) out += "\n";
+        start = end + 1;
+    }
+    return out;
+}
+
 // --help: the usage line, the program's paragraph, the option groups, the footer.
 // Options are named "-o, --output-dir" and "--cull, --no-cull".
 class HelpLayout : public CLI::Formatter {
 public:
-    explicit HelpLayout(std::string usage) : usage_(std::move(usage)) { column_width(28); }
+    explicit HelpLayout(std::string usage) : usage_(std::move(usage)) { column_width(kNameColumn); }
     std::string make_help(const CLI::App* app, std::string, CLI::AppFormatMode mode) const override {
         std::string groups = make_groups(app, mode);  // one blank line between groups, not two
         for (size_t at; (at = groups.find("\n\n\n")) != std::string::npos;) groups.erase(at, 1);
-        return usage_ + "\n\n" + app->get_description() + groups + "\n" + app->get_footer() + "\n";
+        return usage_ + "\n\n" + app->get_description() + fold_lines(groups) + "\n" + app->get_footer() + "\n";
     }
     std::string make_option_name(const CLI::Option* opt, bool positional) const override {
         std::string name = CLI::Formatter::make_option_name(opt, positional);

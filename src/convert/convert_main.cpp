@@ -13,7 +13,8 @@ namespace {
 
 const rt::cli::Program kProgram{
     "rtconvert", "rtconvert 1.0",
-    "usage: rtconvert [--shading auto|flat|smooth] [--size WxH] [--image NAME] [--sphere-segments N] [-q] INPUT OUTPUT",
+    "usage: rtconvert [--shading auto|flat|smooth] [--size WxH] [--image NAME] [--sphere-segments N] [-q]\n"
+    "                 INPUT OUTPUT",
     "Converts INPUT to OUTPUT, the direction chosen by their extensions:\n"
     "  scene.xml  -> scene.json   the course's XML format to JSON (as the course converted its scenes)\n"
     "  scene.json -> scene.xml    and back; relative PLY paths follow the output to its folder\n"

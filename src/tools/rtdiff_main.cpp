@@ -22,8 +22,8 @@ namespace {
 
 const rt::cli::Program kProgram{
     "rtdiff", "rtdiff 1.0",
-    "usage: rtdiff [--tolerance N] [--heatmap OUT] [--html DIR] [--fail-above P] [--scene FILE [--camera N]]\n"
-    "              [--only-common] A B",
+    "usage: rtdiff [--tolerance N] [--heatmap OUT] [--html DIR] [--fail-above P]\n"
+    "              [--scene FILE [--camera N]] [--only-common] A B",
     "Compares image A with image B (PNG or PPM), or every image of the same name in folders A\n"
     "and B: size, largest and mean channel difference, the pixels with some channel off by\n"
     "more than the tolerance (count, share and bounding box) and PSNR; then where: the 5\n"
