@@ -1,9 +1,10 @@
 # make report: the blog companion (tests/report/report.py). Renders every complete
 # official scene and our own with culling off and on, measures float against double,
-# ShadowRayEpsilon x0.1 / x10, MaxRecursionDepth 0..8 and BVH build variants, and writes
-# report/ (gitignored): index.md, index.html, chart.svg, report.json, img/.
+# ShadowRayEpsilon x0.1 / x10, --min-weight 0, MaxRecursionDepth 0..8 and BVH build
+# variants, and writes report/ (gitignored): index.md, index.html, chart.svg, report.json, img/.
 #   make report                       3 runs per configuration (about 10 minutes on 2 cores)
-#   make report-quick                 1 run, fewer BVH variants, no 1M-triangle mesh (about 2 minutes)
+#   make report-quick                 1 process of --repeat 3, fewer BVH variants, no 1M-triangle mesh
+#                                     (about 2 minutes)
 #   make report REPORT_ARGS="--runs 5 --threads 1"     (see report.py --help)
 # One raytracer measures both precisions (--precision); the course's files come from
 # ../shared or $$RT_SHARED_DIR.
@@ -26,3 +27,9 @@ report: raytracer $(REPORT_IMGDIFF) $(REPORT_GEN)
 report-quick: raytracer $(REPORT_IMGDIFF)
 	@mkdir -p report
 	$(REPORT_RUN) --quick $(REPORT_ARGS)
+
+# report.py's own unit tests (its timings, ratio marks and HTML) run with `make test`.
+.PHONY: test-report
+test: test-report
+test-report:
+	@echo "== report.py's unit tests" && python3 -B tests/report/test_report.py

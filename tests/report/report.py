@@ -4,7 +4,7 @@ scenes with back-face culling off and on, several runs each, and measures what e
 speed/accuracy switch costs. Standard library only.
 
     python3 tests/report/report.py --bin B --imgdiff B [--gen-mesh B]
-                                   [--out report] [--runs 3] [--threads N] [--quick]
+                                   [--out report] [--runs 3] [--repeat 1] [--threads N] [--quick]
     make report / make report-quick          (extra arguments: REPORT_ARGS="...")
 
 Writes into --out (default report/, gitignored):
@@ -16,8 +16,12 @@ Writes into --out (default report/, gitignored):
 Method. Every run is a whole ./raytracer process with --stats, -q and -j THREADS, writing
 into a fresh folder; the images of a configuration's first run are kept. Times are the
 raytracer's own figures (render = tracing only; BVH build separately), the median over
---runs runs (default 3; --quick: 1 run, fewer BVH variants, no generated 1M-triangle mesh).
+--runs processes (default 3; --quick: 1, fewer BVH variants, no generated 1M-triangle mesh),
+each rendering every image --repeat times (raytracer --repeat; default 1; --quick: 3).
 Runs are interleaved: round 1 of every configuration of a study, then round 2, ...
+A ratio of two times is marked "within noise" when the fastest and slowest of all the
+renders of one configuration (every process, every repeat) overlap the other's: the
+spread of the runs covers the difference.
 Accuracy: pixels off by more than one level against the course's reference image (the
 conformance tests' measure), and pixels changed against our default double-precision
 render (for our scenes, which have no reference), counted by build/report/imgdiff.
@@ -27,6 +31,7 @@ Studies (each switch is a raytracer option, see README "Measurements"):
   precision    --precision float against double, every scene, alone and with --no-cull,
                and simple.json / spheres.json moved 1e2, 1e3 and 1e4 away from the origin
   epsilon      --epsilon-scale 0.1 and 10: pixels newly darker (acne) and brighter (leaks)
+  weak rays    --min-weight 0 (every ray traced to MaxRecursionDepth) against the default 1e-4
   depth        --max-depth 0..8 on the scenes with mirrors, conductors or glass:
                time against the pixels that still change from depth d-1 to d
   bvh          --bvh-leaf, --bvh-bins, --bvh-split median on the scenes of 5000+ triangles
@@ -39,6 +44,7 @@ import json
 import math
 import os
 import platform
+import re
 import shutil
 import statistics
 import subprocess
@@ -183,9 +189,10 @@ def big_scene(gen_mesh, work):
 # Running
 
 class Runner:
-    def __init__(self, configs, threads, work, timeout):
+    def __init__(self, configs, threads, repeat, work, timeout):
         self.configs = configs      # name -> (binary, [options])
         self.threads = threads
+        self.repeat = repeat        # raytracer --repeat: renders per image in each process
         self.work = work
         self.timeout = timeout
         self.runs = {}              # (config, scene key) -> [ {"wall", "images": {name: record}} ]
@@ -202,7 +209,8 @@ class Runner:
                 shutil.rmtree(out, ignore_errors=True)
             os.makedirs(out, exist_ok=True)
             stats = os.path.join(tmp, "stats.json")
-            cmd = [binary, "-q", "-j", str(self.threads), "--stats", stats, "-o", out] + options + [scene.path]
+            cmd = [binary, "-q", "-j", str(self.threads), "--repeat", str(self.repeat), "--stats", stats, "-o", out] \
+                + options + [scene.path]
             err_path = os.path.join(tmp, "stderr")
             # A run during which other processes used more than a quarter of a core is
             # repeated (twice at most, and at most MAX_REPEATS times in all: on a machine
@@ -281,8 +289,16 @@ class Runner:
         return self.runs[(config, scene.key)][0]["images"][image]
 
     def median(self, config, scene, image, field):
-        vals = [r["images"][image]["seconds"][field] for r in self.runs[(config, scene.key)] if image in r["images"]]
-        return statistics.median(vals)
+        return self.timing(config, scene, image, field).median
+
+    def timing(self, config, scene, image, field):
+        """The median over the processes of each one's median, and the fastest and slowest
+        render of all of them (--stats seconds_min / seconds_max), as a Timing."""
+        recs = [r["images"][image] for r in self.runs[(config, scene.key)] if image in r["images"]]
+        return Timing(statistics.median(rec["seconds"][field] for rec in recs),
+                      min(rec["seconds_min"][field] for rec in recs),
+                      max(rec["seconds_max"][field] for rec in recs),
+                      sum(rec["repeat"] if field != "write" else 1 for rec in recs))
 
     def png(self, config, scene, image):
         return os.path.join(self.kept[(config, scene.key)], image)
@@ -317,6 +333,44 @@ class Differ:
     def close(self):
         self.p.stdin.close()
         self.p.wait()
+
+
+# ---------------------------------------------------------------------------------------
+# Timings and their ratios
+
+class Timing:
+    """Seconds: a median, the fastest and slowest run, and how many runs they are of.
+    Timings add up (a total over images: medians, fastest and slowest summed)."""
+
+    def __init__(self, median, lo, hi, n):
+        self.median, self.lo, self.hi, self.n = median, lo, hi, n
+
+    def __add__(self, other):
+        return Timing(self.median + other.median, self.lo + other.lo, self.hi + other.hi, min(self.n, other.n))
+
+    @staticmethod
+    def total(timings):
+        timings = list(timings)
+        if not timings or any(t is None for t in timings):
+            return None
+        out = timings[0]
+        for t in timings[1:]:
+            out = out + t
+        return out
+
+
+def ratio_text(num, den):
+    """num / den as "1.23x"; "within noise" when the runs' spreads overlap (the fastest of
+    either is no faster than the slowest of the other), "one run" when there is no spread
+    to judge by."""
+    if num is None or den is None or den.median <= 0:
+        return "—"
+    text = f"{num.median / den.median:.2f}x"
+    if min(num.n, den.n) < 2:
+        return text + " (one run)"
+    if num.lo <= den.hi and den.lo <= num.hi:
+        return text + " (within noise)"
+    return text
 
 
 # ---------------------------------------------------------------------------------------
@@ -395,43 +449,50 @@ class Doc:
         return "\n".join(out) + "\n"
 
     def html(self, title):
-        e = html.escape
-        out = [f"<!doctype html><html><head><meta charset='utf-8'><title>{e(title)}</title><style>"
-               "body{font-family:sans-serif;margin:2em;max-width:1400px} table{border-collapse:collapse;margin:1em 0}"
-               "td,th{border:1px solid #ccc;padding:3px 8px} td.r{text-align:right} img{max-width:100%}"
-               "code{background:#f4f4f4}</style></head><body>"]
+        return html_page(title, self.parts)
 
-        def inline(t):
-            # `code` spans only
-            parts = t.split("`")
-            return "".join(e(x) if i % 2 == 0 else "<code>" + e(x) + "</code>" for i, x in enumerate(parts))
 
-        for part in self.parts:
-            if part[0] == "h":
-                out.append(f"<h{part[1]}>{inline(part[2])}</h{part[1]}>")
-            elif part[0] == "p":
-                out.append("<p>" + inline(part[1]) + "</p>")
-            elif part[0] == "table":
-                _, header, rows, align = part
-                out.append("<table><tr>" + "".join("<th>" + inline(h) + "</th>" for h in header) + "</tr>")
-                for r in rows:
-                    out.append("<tr>" + "".join(
-                        f"<td class='{'r' if a == 'r' else 'l'}'>" + inline(str(c)) + "</td>" for c, a in zip(r, align))
-                        + "</tr>")
-                out.append("</table>")
-            elif part[0] == "img":
-                out.append(f"<p><img src='{e(part[1])}' alt='{e(part[2])}'></p>")
-            elif part[0] == "gallery":
-                _, header, rows = part
-                out.append("<table><tr>" + "".join("<th>" + e(h) + "</th>" for h in header) + "</tr>")
-                for label, cells in rows:
-                    cs = "".join(
-                        (f"<td><a href='{e(src)}'><img src='{e(src)}' width='320'></a><br>{e(cap)}</td>" if src
-                         else "<td>—</td>") for src, cap in cells)
-                    out.append(f"<tr><td>{inline(label)}</td>{cs}</tr>")
-                out.append("</table>")
-        out.append("</body></html>")
-        return "\n".join(out) + "\n"
+def html_inline(t):
+    """Markdown's `code` and **bold** spans as HTML; everything else escaped."""
+    parts = t.split("`")
+    return "".join(re.sub(r"\*\*(.+?)\*\*", r"<strong>\1</strong>", html.escape(x)) if i % 2 == 0
+                   else "<code>" + html.escape(x) + "</code>" for i, x in enumerate(parts))
+
+
+def html_page(title, parts):
+    """Doc's parts as one HTML page."""
+    e = html.escape
+    inline = html_inline
+    out = [f"<!doctype html><html><head><meta charset='utf-8'><title>{e(title)}</title><style>"
+           "body{font-family:sans-serif;margin:2em;max-width:1400px} table{border-collapse:collapse;margin:1em 0}"
+           "td,th{border:1px solid #ccc;padding:3px 8px} td.r{text-align:right} img{max-width:100%}"
+           "code{background:#f4f4f4}</style></head><body>"]
+    for part in parts:
+        if part[0] == "h":
+            out.append(f"<h{part[1]}>{inline(part[2])}</h{part[1]}>")
+        elif part[0] == "p":
+            out.append("<p>" + inline(part[1]) + "</p>")
+        elif part[0] == "table":
+            _, header, rows, align = part
+            out.append("<table><tr>" + "".join("<th>" + inline(h) + "</th>" for h in header) + "</tr>")
+            for r in rows:
+                out.append("<tr>" + "".join(
+                    f"<td class='{'r' if a == 'r' else 'l'}'>" + inline(str(c)) + "</td>" for c, a in zip(r, align))
+                    + "</tr>")
+            out.append("</table>")
+        elif part[0] == "img":
+            out.append(f"<p><img src='{e(part[1])}' alt='{e(part[2])}'></p>")
+        elif part[0] == "gallery":
+            _, header, rows = part
+            out.append("<table><tr>" + "".join("<th>" + e(h) + "</th>" for h in header) + "</tr>")
+            for label, cells in rows:
+                cs = "".join(
+                    (f"<td><a href='{e(src)}'><img src='{e(src)}' width='320'></a><br>{e(cap)}</td>" if src
+                     else "<td>—</td>") for src, cap in cells)
+                out.append(f"<tr><td>{inline(label)}</td>{cs}</tr>")
+            out.append("</table>")
+    out.append("</body></html>")
+    return "\n".join(out) + "\n"
 
 
 def svg_chart(rows, title):
@@ -511,12 +572,15 @@ def main():
     ap.add_argument("--out", default=os.path.join(REPO, "report"))
     ap.add_argument("--work", default=os.path.join(REPO, "build", "report"))
     ap.add_argument("--shared", default=os.environ.get("RT_SHARED_DIR") or os.path.join(REPO, "..", "shared"))
-    ap.add_argument("--runs", type=int, default=0, help="runs per configuration (default 3, --quick 1)")
+    ap.add_argument("--runs", type=int, default=0, help="processes per configuration (default 3, --quick 1)")
+    ap.add_argument("--repeat", type=int, default=0,
+                    help="renders per image in each process, raytracer --repeat (default 1, --quick 3)")
     ap.add_argument("--threads", type=int, default=len(os.sched_getaffinity(0)))
     ap.add_argument("--quick", action="store_true")
     ap.add_argument("--timeout", type=float, default=600)
     a = ap.parse_args()
     runs = a.runs or (1 if a.quick else 3)
+    repeat = a.repeat or (3 if a.quick else 1)
     t_start = time.perf_counter()
 
     for b in (a.bin, a.imgdiff):
@@ -539,11 +603,13 @@ def main():
         "float_nocull": ["--precision", "float", "--no-cull"],
         "eps0.1": ["--epsilon-scale", "0.1"],
         "eps10": ["--epsilon-scale", "10"],
+        "minw0": ["--min-weight", "0"],
         # Each study times its own default runs, interleaved with its variants, so that a
         # change in the machine's load between studies cannot pass for an effect.
         "double_prec": [],
         "eps1": [],
         "depth_default": [],
+        "minw_default": [],
     }
     depths = list(range(0, 9))
     for d in depths:
@@ -568,9 +634,10 @@ def main():
     shutil.copy2(a.bin, copy)
     configs = {name: (copy, o) for name, o in configs.items()}
 
-    R = Runner(configs, a.threads, a.work, a.timeout)
+    R = Runner(configs, a.threads, repeat, a.work, a.timeout)
     D = Differ(a.imgdiff)
-    log(f"report: {len(official)} official scenes, {len(ours)} of ours, {runs} run(s) each, -j {a.threads}")
+    log(f"report: {len(official)} official scenes, {len(ours)} of ours, {runs} run(s) of --repeat {repeat} each, "
+        f"-j {a.threads}")
 
     # --- 1. culling off/on -------------------------------------------------------------
     R.measure(["nocull", "double"], main_set, runs, "culling")
@@ -579,6 +646,8 @@ def main():
     R.measure(["double", "float"], far, 1, "far from the origin")
     # --- 3. epsilon ------------------------------------------------------------------------
     R.measure(["eps0.1", "eps1", "eps10"], main_set, runs, "epsilon")
+    # --- 3b. --min-weight 0: every ray to MaxRecursionDepth -------------------------------
+    R.measure(["minw0", "minw_default"], main_set, runs, "min-weight")
     # --- 4. depth ---------------------------------------------------------------------------
     depth_set = [s for s in main_set if s.reflective]
     R.measure([f"depth{d}" for d in depths] + ["depth_default"], depth_set, runs, "depth")
@@ -613,15 +682,19 @@ def main():
 
     n_runs = sum(len(v) for v in R.runs.values())
     still_disturbed = sum(1 for v in R.runs.values() for r in v if r.get("disturbed"))
-    data = {"repeated_runs": R.repeated, "disturbed_runs": still_disturbed, "machine": machine(a.threads, {k: v[0] for k, v in configs.items()}), "runs": runs,
+    data = {"repeated_runs": R.repeated, "disturbed_runs": still_disturbed,
+            "machine": machine(a.threads, {k: v[0] for k, v in configs.items()}), "runs": runs, "repeat": repeat,
             "quick": a.quick, "images": []}
     doc = Doc()
     m = data["machine"]
     doc.h(1, "Ray tracer report: culling, timings and the speed/accuracy trade")
     doc.p(f"Machine: {m['cpu']}, {m['hardware_threads']} hardware threads, rendering with {a.threads} threads "
           f"(`-j {a.threads}`); {m['compiler']}; commit {m['commit']}; {m['date']}. Times are medians of "
-          f"{runs} run{'s' if runs > 1 else ''} of each configuration (the raytracer's `--stats` figures: "
-          f"render = tracing only, BVH build separately), runs interleaved across configurations. "
+          f"{runs} process{'es' if runs > 1 else ''} of each configuration, each rendering every image "
+          f"{repeat} time{'s' if repeat > 1 else ''} (`--repeat {repeat}`; the raytracer's `--stats` figures: "
+          f"render = tracing only, BVH build separately), processes interleaved across configurations. "
+          f"A ratio is marked *within noise* where the fastest and slowest renders of the two "
+          f"configurations overlap, *one run* where there is one render of each. "
           f"Made by `make report{'-quick' if a.quick else ''}` (tests/report/report.py). "
           f"A run during which other processes used more than a quarter of a core was repeated "
           f"(twice at most, {MAX_REPEATS} times in all): {R.repeated} repeats; {still_disturbed} of "
@@ -634,17 +707,18 @@ def main():
           "Off by >1 vs reference: pixels with a channel more than one level away from the course's "
           "reference image, with culling on (as the references were made).")
     rows, chart_rows = [], []
-    sum_off = sum_on = 0.0
+    all_off, all_on = [], []
     gallery = []
     for s in main_set:
         if not (R.ok("double", s) and R.ok("nocull", s)):
             continue
         for im in R.images("double", s):
             rec = R.record("double", s, im)
-            t_on = R.median("double", s, im, "render")
-            t_off = R.median("nocull", s, im, "render")
-            sum_on += t_on
-            sum_off += t_off
+            tm_on = R.timing("double", s, im, "render")
+            tm_off = R.timing("nocull", s, im, "render")
+            t_on, t_off = tm_on.median, tm_off.median
+            all_on.append(tm_on)
+            all_off.append(tm_off)
             stem = f"{s.key}__{os.path.splitext(os.path.basename(im))[0]}"
             diff_png = os.path.join(img_dir, stem + "__culling_diff.png")
             ch = vs_cfg("nocull", "double", s, im, diff_png)
@@ -658,7 +732,7 @@ def main():
                 shutil.copy2(ref, os.path.join(img_dir, stem + "__reference.png"))
             rows.append([f"`{s.label}`", os.path.basename(im), f"{rec['width']}x{rec['height']}",
                          str(prim["triangles"]) + (f" + {prim['spheres']} sph" if prim["spheres"] else ""),
-                         fs(t_off), fs(t_on), f"{t_off / t_on:.2f}x" if t_on > 0 else "—",
+                         fs(t_off), fs(t_on), ratio_text(tm_off, tm_on),
                          f"{ch['changed']} ({pct(ch['changed'], pixels)})" if ch else "—",
                          pct(rd["over1"], pixels, 3) if rd else "no reference"])
             chart_rows.append((os.path.basename(im), t_off, t_on))
@@ -673,14 +747,15 @@ def main():
                                    "render_cull": t_on, "culling_diff": ch, "vs_reference": rd,
                                    "rays_cull": rec["rays"],
                                    "rays_nocull": R.record("nocull", s, im)["rays"]})
-    rows.append(["**all**", "", "", "", fs(sum_off), fs(sum_on),
-                 f"{sum_off / sum_on:.2f}x" if sum_on > 0 else "—", "", ""])
+    sum_off, sum_on = Timing.total(all_off), Timing.total(all_on)
+    rows.append(["**all**", "", "", "", fs(sum_off.median if sum_off else None),
+                 fs(sum_on.median if sum_on else None), ratio_text(sum_off, sum_on), "", ""])
     doc.table(["scene", "image", "resolution", "triangles", "no culling (s)", "culling (s)", "speed-up",
                "pixels changed by culling", "off by >1 vs reference"], rows,
               ["l", "l", "r", "r", "r", "r", "r", "r", "r"])
     with open(os.path.join(a.out, "chart.svg"), "w", encoding="utf-8") as f:
-        f.write(svg_chart(chart_rows, f"Render time per image, median of {runs} run{'s' if runs > 1 else ''}, "
-                                      f"{a.threads} threads"))
+        f.write(svg_chart(chart_rows, f"Render time per image, median of {runs * repeat} "
+                                      f"render{'s' if runs * repeat > 1 else ''}, {a.threads} threads"))
     doc.image("chart.svg", "render time per image, culling off and on")
 
     # ---- the trade, one row per option ----
@@ -705,8 +780,8 @@ def main():
                         n_own += 1
         return mean(ref_p), worst(ref_p), mean(own_p), worst(own_p), n_ref, n_own
 
-    def total_time(cfg, scenes, fields=("render",)):
-        t = 0.0
+    def total_timing(cfg, scenes, fields=("render",)):
+        parts = []
         for s in scenes:
             if not R.ok(cfg, s):
                 return None
@@ -714,17 +789,21 @@ def main():
                 for fld in fields:
                     if fld == "bvh" and i > 0:
                         continue  # one build per scene file
-                    t += R.median(cfg, s, im, fld)
-        return t
+                    parts.append(R.timing(cfg, s, im, fld))
+        return Timing.total(parts)
+
+    def total_time(cfg, scenes, fields=("render",)):
+        t = total_timing(cfg, scenes, fields)
+        return t.median if t else None
 
     summary = []
 
     def add_row(study, option, cfg, scenes, base_cfg="double", fields=("render",), err_base="double"):
-        t = total_time(cfg, scenes, fields)
-        t0 = total_time(base_cfg, scenes, fields)
+        t = total_timing(cfg, scenes, fields)
+        t0 = total_timing(base_cfg, scenes, fields)
         rm, rw, om, ow, nr, no = errors(cfg, scenes, err_base)
-        summary.append([study, option, f"{sum(len(R.images(cfg, s)) for s in scenes)}", fs(t),
-                        f"{t / t0:.2f}x" if t and t0 else "—",
+        summary.append([study, option, f"{sum(len(R.images(cfg, s)) for s in scenes)}", fs(t.median if t else None),
+                        ratio_text(t, t0) if cfg != base_cfg else "1.00x",
                         f"{pct_s(rm)} / {pct_s(rw)}" if nr else "—",
                         f"{pct_s(om)} / {pct_s(ow)}" if no else "—"])
 
@@ -736,6 +815,10 @@ def main():
     add_row("ShadowRayEpsilon", "x0.1 (`--epsilon-scale 0.1`)", "eps0.1", main_set, "eps1")
     add_row("ShadowRayEpsilon", "x1 (default)", "eps1", main_set, "eps1")
     add_row("ShadowRayEpsilon", "x10 (`--epsilon-scale 10`)", "eps10", main_set, "eps1")
+    add_row("weak rays", "not traced below weight 1e-4 (default)", "minw_default", main_set, "minw_default",
+            err_base="minw_default")
+    add_row("weak rays", "all traced to MaxRecursionDepth (`--min-weight 0`)", "minw0", main_set, "minw_default",
+            err_base="minw_default")
     for d in depths:
         add_row("MaxRecursionDepth", f"{d} (`--max-depth {d}`)", f"depth{d}", depth_set, "depth_default")
     add_row("MaxRecursionDepth", "the scene's own (default)", "depth_default", depth_set, "depth_default")
@@ -745,8 +828,8 @@ def main():
     doc.p("Time: the sum over the study's images of the median render time (for BVH rows: BVH build + "
           "render), and its ratio to the default. Error, official scenes: the percentage of pixels more than "
           "one level off the course's reference image, mean / worst over the images. Error, our scenes (no "
-          "reference): the same against our default double-precision render. Studies: precision, culling and "
-          f"epsilon over all {sum(len(R.images('double', s)) for s in main_set)} images; depth over the "
+          "reference): the same against our default double-precision render. Studies: precision, culling, "
+          f"epsilon and weak rays over all {sum(len(R.images('double', s)) for s in main_set)} images; depth over the "
           f"{len(depth_set)} scenes with mirrors, conductors or glass; BVH over the {len(bvh_set)} scenes of "
           "5000+ triangles" + (" (including a generated 1M-triangle mesh)" if big else "") + ".")
     doc.table(["study", "option", "images", "time (s)", "vs default", "official: % off vs reference (mean / worst)",
