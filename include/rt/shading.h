@@ -51,8 +51,9 @@ inline Ray spawn_ray(Vec3 p, Vec3 offset_normal, Real epsilon, Vec3 dir) { retur
 // A reflected or refracted ray is not traced when its weight (what its radiance is
 // multiplied by in the pixel: the product of MirrorReflectance x Fresnel, 1 - Fresnel and
 // Beer's law along its path) is below the minimum weight; 0 traces every ray to
-// MaxRecursionDepth, as the assignment describes. The default changes no official image
-// (docs/conventions.md, "Negligible rays").
+// MaxRecursionDepth, as the assignment describes. The default moves a few pixels of the
+// official images by one level and keeps the ray tree of glass at a deep
+// MaxRecursionDepth from growing geometrically (docs/conventions.md, "Weak rays").
 constexpr double kDefaultMinWeight = 1e-4;
 
 struct TraceOptions {
