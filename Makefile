@@ -123,18 +123,13 @@ $(BUILD)/src/main-double.o: src/main.cpp $(BUILD)/config
 FORCE:
 
 $(BUILD)/librt.a: $(RENDER_OBJ)
-	@rm -f $@
-	ar rcs $@ $^
-
 $(BUILD)/librt_tools.a: $(TOOL_OBJ)
-	@rm -f $@
-	ar rcs $@ $^
-
 $(BUILD)/librt_float.a: $(RENDER_FLOAT_OBJ)
-	@rm -f $@
-	ar rcs $@ $^
-
 $(BUILD)/librt_float_tools.a: $(TOOL_FLOAT_OBJ)
+
+# Every archive (these and mk/*.mk's) is its objects, remade whole: ar would keep the
+# members of sources since removed.
+%.a:
 	@rm -f $@
 	ar rcs $@ $^
 

@@ -57,13 +57,9 @@ $(ASAN_DIR)/tests/%.o: tests/%.cpp $(ASAN_DIR)/pch/test_pch.h.gch
 	@mkdir -p $(dir $@)
 	$(CXX) $(CPPFLAGS) $(ASAN_CXXFLAGS) -include $(ASAN_DIR)/pch/test_pch.h -c $< -o $@
 
+# The archives are made by the Makefile's %.a rule, as every librt*.a.
 $(ASAN_DIR)/librt.a: $(ASAN_LIB_OBJ)
-	@rm -f $@
-	ar rcs $@ $^
-
 $(ASAN_DIR)/librt_float.a: $(ASAN_FLOAT_OBJ)
-	@rm -f $@
-	ar rcs $@ $^
 
 # The CLI tests run "./raytracer" from the folder the test program starts in, so the
 # sanitized renderer sits beside the sanitized test program and the tests start there.
@@ -98,8 +94,6 @@ $(FUZZ_DIR)/%.o: %.cpp
 	$(FUZZ_CXX) $(CPPFLAGS) $(FUZZ_FLAGS) -fsanitize=fuzzer-no-link -c $< -o $@
 
 $(FUZZ_DIR)/librt.a: $(FUZZ_LIB_OBJ)
-	@rm -f $@
-	ar rcs $@ $^
 
 $(FUZZ_DIR)/fuzz_%: $(FUZZ_DIR)/tests/fuzz/fuzz_%.o $(FUZZ_DIR)/librt.a
 	$(FUZZ_CXX) $(FUZZ_FLAGS) -fsanitize=fuzzer -o $@ $^ $(LDLIBS)
@@ -151,12 +145,8 @@ $(MEMCHECK_DIR)/float/%.o: %.cpp
 	$(CXX) $(CPPFLAGS) $(FLOAT_CPPFLAGS) $(MEMCHECK_CXXFLAGS) -c $< -o $@
 
 $(MEMCHECK_DIR)/librt.a: $(MEMCHECK_LIB_OBJ)
-	@rm -f $@
-	ar rcs $@ $^
 
 $(MEMCHECK_DIR)/librt_float.a: $(MEMCHECK_FLOAT_OBJ)
-	@rm -f $@
-	ar rcs $@ $^
 
 $(MEMCHECK_DIR)/raytracer: $(MEMCHECK_DIR)/src/main.o $(MEMCHECK_DIR)/librt_float.a $(MEMCHECK_DIR)/librt.a
 	$(CXX) $(MEMCHECK_CXXFLAGS) -o $@ $^ $(LDLIBS)

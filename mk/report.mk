@@ -2,7 +2,7 @@
 # official scene and our own with culling off and on, measures float against double,
 # ShadowRayEpsilon x0.1 / x10, --min-weight 0, MaxRecursionDepth 0..8 and BVH build
 # variants, and writes report/ (gitignored): index.md, index.html, chart.svg, report.json, img/.
-#   make report                       3 runs per configuration (about 10 minutes on 2 cores)
+#   make report                       3 processes per configuration (about 4 minutes on 2 cores)
 #   make report-quick                 1 process of --repeat 3, fewer BVH variants, no 1M-triangle mesh
 #                                     (about 2 minutes)
 #   make report REPORT_ARGS="--runs 5 --threads 1"     (see report.py --help)

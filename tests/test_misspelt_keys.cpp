@@ -87,15 +87,17 @@ TEST(Spelling, NearMissOnlyForCloseWords) {
     EXPECT_EQ(rt::near_miss("Radius", keys), "");
 }
 
+// A key of an object and a misspelling of it.
+struct KeyTypo {
+    const char* pointer;  // the object
+    const char* key;      // a valid key of it
+    const char* typo;
+};
+
 // A misspelt key in each kind of object is reported with the key meant, and the scene
 // renders (exit 0) with the warning counted on the summary line.
 TEST(MisspeltKeys, EachKindOfObjectSuggestsTheKeyMeant) {
-    struct Case {
-        const char* pointer;  // the object
-        const char* key;      // a valid optional key of it
-        const char* typo;
-    };
-    const Case cases[] = {
+    const KeyTypo cases[] = {
         {"/Scene/Cameras/Camera", "_id", "id"},
         {"/Scene/Lights/PointLight", "_id", "_Id"},
         {"/Scene/Materials/Material", "DiffuseReflectance", "DiffuseReflectence"},
@@ -107,7 +109,7 @@ TEST(MisspeltKeys, EachKindOfObjectSuggestsTheKeyMeant) {
         {"/Scene", "BackgroundColor", "BackgroundColour"},
         {"/Scene", "ShadowRayEpsilon", "ShadowRayEpsillon"},
     };
-    for (const Case& c : cases) {
+    for (const KeyTypo& c : cases) {
         SCOPED_TRACE(std::string(c.pointer) + "/" + c.typo);
         json scene = every_kind_scene();
         scene[json::json_pointer(std::string(c.pointer) + "/" + c.key)] = "1";
@@ -140,12 +142,7 @@ TEST(MisspeltKeys, NoSuggestionForAnUnrelatedKey) {
 // A misspelt required key is an error naming the key found instead; every required key
 // of each kind of object.
 TEST(MisspeltKeys, MissingRequiredKeyNamesTheNearMiss) {
-    struct Case {
-        const char* pointer;
-        const char* key;
-        const char* typo;
-    };
-    const Case cases[] = {
+    const KeyTypo cases[] = {
         {"/Scene/Cameras/Camera", "NearDistance", "NearDistnace"},
         {"/Scene/Cameras/Camera", "Position", "position"},
         {"/Scene/Lights/PointLight", "Intensity", "Intensty"},
@@ -156,7 +153,7 @@ TEST(MisspeltKeys, MissingRequiredKeyNamesTheNearMiss) {
         {"/Scene/Objects/Sphere", "Center", "Centre"},
         {"/Scene/Objects/Plane", "Normal", "Normall"},
     };
-    for (const Case& c : cases) {
+    for (const KeyTypo& c : cases) {
         SCOPED_TRACE(std::string(c.pointer) + "/" + c.typo);
         Rendered out;
         render(out, rename_key(every_kind_scene(), c.pointer, c.key, c.typo));
