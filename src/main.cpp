@@ -1,11 +1,11 @@
-// raytracer: runs the double or the float copy of the program (rt/program.h), as
+// raytracer: runs the double or the float copy of the program (rt/app/program.h), as
 // --precision says; that copy parses and checks every option, this one included.
 // Built with RT_NO_FLOAT (make PRECISIONS=double), the program holds the double copy only
 // and refuses --precision float with one error line, exit status 2 (a usage error).
 #include <cstdio>
 #include <cstring>
 
-#include "rt/program.h"
+#include "rt/app/program.h"
 
 namespace {
 

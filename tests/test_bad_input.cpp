@@ -19,9 +19,9 @@
 
 #include <nlohmann/json.hpp>
 
-#include "rt/error.h"
-#include "rt/loader.h"
-#include "rt/ply.h"
+#include "rt/core/error.h"
+#include "rt/loader/load_scene.h"
+#include "rt/loader/ply.h"
 #include "test_support.h"
 
 namespace fs = std::filesystem;

@@ -1,4 +1,4 @@
-// BVH tests (include/rt/bvh.h, src/bvh): the scene queries rt::closest_hit and
+// BVH tests (include/rt/bvh/bvh.h, src/bvh): the scene queries rt::closest_hit and
 // rt::any_hit must give exactly the answer of a brute-force loop over every primitive
 // (same t to the last bit, same primitive, ties in t going to the lowest primitive id:
 // triangles first, then spheres, then planes), and the tree must be well formed.
@@ -25,10 +25,10 @@
 #include <type_traits>
 #include <vector>
 
-#include "rt/bvh.h"
-#include "rt/intersect.h"
-#include "rt/loader.h"
-#include "rt/scene.h"
+#include "rt/bvh/bvh.h"
+#include "rt/geometry/intersect.h"
+#include "rt/loader/load_scene.h"
+#include "rt/geometry/scene.h"
 
 namespace {
 

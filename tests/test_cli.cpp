@@ -24,7 +24,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "rt/image.h"
+#include "rt/image/image.h"
 #include "test_support.h"
 
 namespace fs = std::filesystem;

@@ -30,11 +30,11 @@
 #include <type_traits>
 #include <vector>
 
-#include "rt/error.h"
-#include "rt/image.h"
-#include "rt/loader.h"
-#include "rt/render.h"
-#include "rt/scene.h"
+#include "rt/core/error.h"
+#include "rt/image/image.h"
+#include "rt/loader/load_scene.h"
+#include "rt/render/render.h"
+#include "rt/geometry/scene.h"
 #include "test_support.h"
 
 namespace fs = std::filesystem;

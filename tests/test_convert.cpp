@@ -1,4 +1,4 @@
-// The converters (rt/convert.h, ./rtconvert): lossless XML <-> JSON round trips of
+// The converters (rt/convert/convert.h, ./rtconvert): lossless XML <-> JSON round trips of
 // every official scene, OBJ (+MTL) import on OBJ files written here (quads, negative
 // indices, no normals, smoothing groups, with, without and with broken MTL files),
 // scene -> OBJ + MTL export, and the command line's errors.
@@ -19,11 +19,11 @@
 #include <type_traits>
 #include <vector>
 
-#include "rt/convert.h"
-#include "rt/error.h"
-#include "rt/loader.h"
-#include "rt/render.h"
-#include "rt/scene.h"
+#include "rt/convert/convert.h"
+#include "rt/core/error.h"
+#include "rt/loader/load_scene.h"
+#include "rt/render/render.h"
+#include "rt/geometry/scene.h"
 #include "test_support.h"
 
 namespace fs = std::filesystem;
@@ -700,7 +700,7 @@ TEST(ConvertCli, BadInputIsOneLineAndWritesNothing) {
     }
 }
 
-// One function formats JSON parse errors for both programs (rt/scene_tree.h): a number
+// One function formats JSON parse errors for both programs (rt/loader/scene_tree.h): a number
 // beyond the double range gets the same one-line message, with its line and column,
 // from the renderer and from the converter.
 TEST(ConvertCli, NumberOverflowIsTheSameMessageInBothPrograms) {

@@ -1,5 +1,5 @@
-// Geometry tests: camera rays (include/rt/camera.h, through the loader for lookAt
-// cameras), the ray/primitive tests of include/rt/intersect.h, and a watertightness
+// Geometry tests: camera rays (include/rt/camera/camera.h, through the loader for lookAt
+// cameras), the ray/primitive tests of include/rt/geometry/intersect.h, and a watertightness
 // property of the scene query rt::closest_hit on jittered meshes.
 //
 // Expected values are worked out by hand in the comments. Random tests use fixed
@@ -18,12 +18,12 @@
 #include <utility>
 #include <vector>
 
-#include "rt/camera.h"
-#include "rt/intersect.h"
-#include "rt/loader.h"
-#include "rt/math.h"
-#include "rt/scene.h"
-#include "rt/scene_desc.h"
+#include "rt/camera/camera.h"
+#include "rt/geometry/intersect.h"
+#include "rt/loader/load_scene.h"
+#include "rt/core/math.h"
+#include "rt/geometry/scene.h"
+#include "rt/loader/scene_desc.h"
 
 namespace {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <thread>
 
-#include "rt/image.h"
+#include "rt/image/image.h"
 #include "test_support.h"
 
 namespace {

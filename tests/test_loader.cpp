@@ -1,4 +1,4 @@
-// Tests for the JSON scene loader (include/rt/loader.h, src/loader/):
+// Tests for the JSON scene loader (include/rt/loader/load_scene.h, src/loader/):
 // parse_scene on JSON held in memory. Valid input: the spec's sample scene, defaults,
 // single-object and array forms, lookAt cameras, inline meshes, warnings, numbers given
 // as JSON numbers. Bad input: every class must throw rt::InputError whose one-line
@@ -11,9 +11,9 @@
 #include <string>
 #include <vector>
 
-#include "rt/error.h"
-#include "rt/loader.h"
-#include "rt/scene_desc.h"
+#include "rt/core/error.h"
+#include "rt/loader/load_scene.h"
+#include "rt/loader/scene_desc.h"
 
 namespace {
 

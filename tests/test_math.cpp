@@ -1,5 +1,5 @@
-// Tests for the small vector library (include/rt/math.h) and for quantize()
-// (include/rt/image.h), which turns radiance into 8-bit channel values.
+// Tests for the small vector library (include/rt/core/math.h) and for quantize()
+// (include/rt/image/image.h), which turns radiance into 8-bit channel values.
 // Every expected value is worked out by hand in the comment next to it; the
 // inputs are chosen so that the arithmetic is exact in binary floating point.
 #include <gtest/gtest.h>
@@ -11,9 +11,9 @@
 #include <random>
 #include <vector>
 
-#include "rt/image.h"
-#include "rt/math.h"
-#include "rt/render.h"
+#include "rt/image/image.h"
+#include "rt/core/math.h"
+#include "rt/render/render.h"
 
 namespace {
 

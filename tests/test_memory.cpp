@@ -1,4 +1,4 @@
-// allocate_bytes (rt/memory.h) and the global operator new that uses it.
+// allocate_bytes (rt/io/memory.h) and the global operator new that uses it.
 #include <gtest/gtest.h>
 #include <malloc.h>
 
@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "rt/memory.h"
+#include "rt/io/memory.h"
 
 namespace {
 

@@ -1,4 +1,4 @@
-// Misspelt keys (rt/spelling.h, the loader's warnings) and --strict, through the binary:
+// Misspelt keys (rt/loader/spelling.h, the loader's warnings) and --strict, through the binary:
 // an unknown key within a small edit distance of a key valid at its place is reported
 // with that key ("did you mean ...?"), a missing required key names the near miss found
 // instead, --strict turns every warning into an error (exit 1, no image), the summary
@@ -10,7 +10,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "rt/spelling.h"
+#include "rt/loader/spelling.h"
 #include "test_support.h"
 
 using json = nlohmann::ordered_json;

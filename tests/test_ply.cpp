@@ -23,8 +23,8 @@
 #include <string>
 #include <vector>
 
-#include "rt/error.h"
-#include "rt/ply.h"
+#include "rt/core/error.h"
+#include "rt/loader/ply.h"
 #include "test_support.h"
 
 namespace {

@@ -1,4 +1,4 @@
-// The image comparison of rt/image_diff.h on hand-made images with known differences,
+// The image comparison of rt/image/image_diff.h on hand-made images with known differences,
 // and ./rtdiff on them: figures, worst pixels, the heatmap and its legend, exit statuses,
 // --fail-above, folders, --html, bad input.
 #include <gtest/gtest.h>
@@ -7,10 +7,10 @@
 #include <string>
 #include <vector>
 
-#include "rt/bitmap_font.h"
-#include "rt/error.h"
-#include "rt/image.h"
-#include "rt/image_diff.h"
+#include "rt/image/bitmap_font.h"
+#include "rt/core/error.h"
+#include "rt/image/image.h"
+#include "rt/image/image_diff.h"
 #include "test_support.h"
 
 namespace {

@@ -1,4 +1,4 @@
-// Shading tests: the reflectance formulas of include/rt/shading.h, and end-to-end
+// Shading tests: the reflectance formulas of include/rt/shading/shading.h, and end-to-end
 // checks of the Whitted integrator through rt::render on tiny scenes written as JSON
 // (parse_scene -> build_scene -> render). Expected pixel values are worked out by
 // hand in the comments; inputs are chosen so that the exact value is far from an
@@ -11,11 +11,11 @@
 #include <limits>
 #include <string>
 
-#include "rt/image.h"
-#include "rt/loader.h"
-#include "rt/render.h"
-#include "rt/scene.h"
-#include "rt/shading.h"
+#include "rt/image/image.h"
+#include "rt/loader/load_scene.h"
+#include "rt/render/render.h"
+#include "rt/geometry/scene.h"
+#include "rt/shading/shading.h"
 
 namespace {
 

@@ -19,12 +19,12 @@
 #include <type_traits>
 #include <vector>
 
-#include "rt/bvh.h"
-#include "rt/error.h"
-#include "rt/loader.h"
-#include "rt/render.h"
-#include "rt/run.h"
-#include "rt/scene.h"
+#include "rt/bvh/bvh.h"
+#include "rt/core/error.h"
+#include "rt/loader/load_scene.h"
+#include "rt/render/render.h"
+#include "rt/app/run.h"
+#include "rt/geometry/scene.h"
 #include "test_support.h"
 
 namespace {

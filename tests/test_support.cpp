@@ -16,8 +16,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "rt/error.h"
-#include "rt/image_diff.h"
+#include "rt/core/error.h"
+#include "rt/image/image_diff.h"
 
 namespace fs = std::filesystem;
 

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "rt/image.h"
+#include "rt/image/image.h"
 
 // The course's shared files (scenes, references, spec): $RT_SHARED_DIR when set,
 // else ../shared relative to the current directory (tests run from the repo root),
@@ -45,7 +45,7 @@ RunResult run_raytracer(const std::vector<std::string>& args, const std::string&
 std::string raytracer_path();
 
 // `args` after "--precision" and this test program's precision (the library copy it
-// was compiled against: rt/real.h), so the CLI tests run the same precision as the rest.
+// was compiled against: rt/core/real.h), so the CLI tests run the same precision as the rest.
 std::vector<std::string> raytracer_args(const std::vector<std::string>& args);
 
 // A file of this repository (e.g. "scenes/showcase.json") found from where the tests
@@ -71,7 +71,7 @@ struct ImageDiff {
 };
 
 // Per-channel comparison of two images of the same size: rt::compare_images at the
-// tolerance of 1 level (rt/image_diff.h, the measure ./rtdiff prints). Images of different
+// tolerance of 1 level (rt/image/image_diff.h, the measure ./rtdiff prints). Images of different
 // sizes compare as totally different: max_diff 256, mean_diff 255, pct_over_1 100, psnr 0.
 ImageDiff compare(const rt::Image& a, const rt::Image& b);
 

@@ -23,12 +23,12 @@
 
 #include <nlohmann/json.hpp>
 
-#include "rt/error.h"
-#include "rt/image.h"
-#include "rt/loader.h"
-#include "rt/render.h"
-#include "rt/scene.h"
-#include "rt/trace.h"
+#include "rt/core/error.h"
+#include "rt/image/image.h"
+#include "rt/loader/load_scene.h"
+#include "rt/render/render.h"
+#include "rt/geometry/scene.h"
+#include "rt/shading/trace.h"
 #include "test_support.h"
 
 using json = nlohmann::json;

@@ -15,12 +15,12 @@
 #include <string>
 #include <vector>
 
-#include "rt/convert.h"
-#include "rt/error.h"
-#include "rt/image.h"
-#include "rt/loader.h"
-#include "rt/render.h"
-#include "rt/scene.h"
+#include "rt/convert/convert.h"
+#include "rt/core/error.h"
+#include "rt/image/image.h"
+#include "rt/loader/load_scene.h"
+#include "rt/render/render.h"
+#include "rt/geometry/scene.h"
 #include "test_support.h"
 
 namespace fs = std::filesystem;

@@ -1,4 +1,4 @@
-// The raytracer program in this copy's precision (rt/program.h): reads the command
+// The raytracer program in this copy's precision (rt/app/program.h): reads the command
 // line, renders every camera of each scene file (run_scenes) and writes --stats; or
 // traces one pixel (--trace, run_trace).
 #include <cstdio>
@@ -6,12 +6,12 @@
 #include <type_traits>
 #include <vector>
 
-#include "rt/atomic_file.h"
-#include "rt/cli.h"
-#include "rt/error.h"
-#include "rt/image.h"
-#include "rt/program.h"
-#include "rt/run.h"
+#include "rt/io/atomic_file.h"
+#include "rt/cli/options.h"
+#include "rt/core/error.h"
+#include "rt/image/image.h"
+#include "rt/app/program.h"
+#include "rt/app/run.h"
 
 namespace rt {
 namespace {

@@ -1,6 +1,6 @@
 // The raytracer command's pipeline: per scene file load -> build -> (per camera)
-// render -> write -> record. See rt/run.h.
-#include "rt/run.h"
+// render -> write -> record. See rt/app/run.h.
+#include "rt/app/run.h"
 
 #include <algorithm>
 #include <chrono>
@@ -13,13 +13,13 @@
 #include <utility>
 
 #include "progress.h"
-#include "rt/atomic_file.h"
-#include "rt/cli.h"
-#include "rt/error.h"
-#include "rt/image.h"
-#include "rt/loader.h"
-#include "rt/scene.h"
-#include "rt/trace.h"
+#include "rt/io/atomic_file.h"
+#include "rt/cli/options.h"
+#include "rt/core/error.h"
+#include "rt/image/image.h"
+#include "rt/loader/load_scene.h"
+#include "rt/geometry/scene.h"
+#include "rt/shading/trace.h"
 
 namespace rt {
 
@@ -202,7 +202,7 @@ bool run_scene(const std::string& scene_path, const RunOptions& o, std::vector<I
             ok = false;
         } catch (const std::exception& e) {
             // Any other failure of this camera (helper threads that cannot start do not
-            // fail: their work runs on the calling thread, rt/threads.h).
+            // fail: their work runs on the calling thread, rt/core/threads.h).
             cli::print_error(scene_path + ": camera " + std::to_string(c + 1) + ": cannot render " + out + ": " +
                              e.what());
             ok = false;

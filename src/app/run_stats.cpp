@@ -11,8 +11,8 @@
 #include <fstream>
 #include <thread>
 
-#include "rt/real.h"
-#include "rt/run.h"
+#include "rt/core/real.h"
+#include "rt/app/run.h"
 
 namespace rt {
 namespace app {

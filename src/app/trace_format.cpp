@@ -1,11 +1,11 @@
-// A pixel's ray tree as indented text and as JSON (rt/trace.h; the format: docs/trace.md).
+// A pixel's ray tree as indented text and as JSON (rt/shading/trace.h; the format: docs/trace.md).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <string>
 
-#include "rt/trace.h"
+#include "rt/shading/trace.h"
 
 namespace rt {
 namespace {
@@ -124,7 +124,7 @@ public:
         line(in, "returns " + vec(r.radiance));
     }
 
-    // The Fresnel equations' terms (rt/shading.h, FresnelTerms).
+    // The Fresnel equations' terms (rt/shading/shading.h, FresnelTerms).
     void fresnel(const RayTrace& r, bool dielectric, int indent) {
         const FresnelTerms& f = r.fresnel;
         if (dielectric) {

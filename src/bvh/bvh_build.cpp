@@ -22,9 +22,9 @@
 #include <immintrin.h>
 #endif
 
-#include "rt/bvh.h"
-#include "rt/memory.h"
-#include "rt/threads.h"
+#include "rt/bvh/bvh.h"
+#include "rt/io/memory.h"
+#include "rt/core/threads.h"
 
 namespace rt {
 

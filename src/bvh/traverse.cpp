@@ -21,8 +21,8 @@
 #pragma GCC diagnostic pop
 #endif
 
-#include "rt/intersect.h"
-#include "rt/scene.h"
+#include "rt/geometry/intersect.h"
+#include "rt/geometry/scene.h"
 
 namespace rt {
 namespace {

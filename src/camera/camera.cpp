@@ -1,4 +1,4 @@
-#include "rt/camera.h"
+#include "rt/camera/camera.h"
 
 #include <cmath>
 

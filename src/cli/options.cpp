@@ -1,4 +1,4 @@
-#include "rt/cli.h"
+#include "rt/cli/options.h"
 
 #include <algorithm>
 #include <cerrno>

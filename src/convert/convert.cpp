@@ -1,17 +1,17 @@
 // rtconvert's library side: which conversion a pair of file names asks for, and the
 // files each one writes. The conversions themselves: the scene readers of src/loader
-// (XML or JSON -> tree, rt/scene_tree.h), xml_writer.cpp (tree -> XML),
+// (XML or JSON -> tree, rt/loader/scene_tree.h), xml_writer.cpp (tree -> XML),
 // obj_import.cpp, obj_export.cpp and ply_writer.cpp.
 #include <filesystem>
 #include <string>
 
 #include "obj_import.h"
-#include "rt/atomic_file.h"
-#include "rt/convert.h"
-#include "rt/error.h"
-#include "rt/files.h"
-#include "rt/loader.h"
-#include "rt/scene_tree.h"
+#include "rt/io/atomic_file.h"
+#include "rt/convert/convert.h"
+#include "rt/core/error.h"
+#include "rt/io/files.h"
+#include "rt/loader/load_scene.h"
+#include "rt/loader/scene_tree.h"
 #include "xml_writer.h"
 
 namespace fs = std::filesystem;

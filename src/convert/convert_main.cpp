@@ -1,13 +1,13 @@
 // rtconvert: converts scenes between the course's XML format, our JSON format,
-// Wavefront OBJ (+MTL) and binary PLY. See rt/convert.h and the README.
+// Wavefront OBJ (+MTL) and binary PLY. See rt/convert/convert.h and the README.
 #include <cstdio>
 #include <new>
 #include <string>
 #include <vector>
 
-#include "rt/cli.h"
-#include "rt/convert.h"
-#include "rt/error.h"
+#include "rt/cli/options.h"
+#include "rt/convert/convert.h"
+#include "rt/core/error.h"
 
 namespace {
 

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <string>
 
-#include "rt/convert.h"
+#include "rt/convert/convert.h"
 
 namespace rt {
 namespace {

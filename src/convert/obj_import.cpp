@@ -20,8 +20,8 @@
 #include <utility>
 
 #include "obj_import.h"
-#include "rt/error.h"
-#include "rt/files.h"
+#include "rt/core/error.h"
+#include "rt/io/files.h"
 
 namespace rt {
 #ifndef RT_NO_OBJ

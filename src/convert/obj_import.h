@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "rt/convert.h"
+#include "rt/convert/convert.h"
 
 namespace rt {
 

@@ -2,9 +2,9 @@
 #include <cstring>
 #include <string>
 
-#include "rt/atomic_file.h"
-#include "rt/convert.h"
-#include "rt/error.h"
+#include "rt/io/atomic_file.h"
+#include "rt/convert/convert.h"
+#include "rt/core/error.h"
 
 namespace rt {
 namespace {

@@ -7,8 +7,8 @@
 #include <cctype>
 #include <sstream>
 
-#include "rt/error.h"
-#include "rt/scene_tree.h"
+#include "rt/core/error.h"
+#include "rt/loader/scene_tree.h"
 #include "xml_writer.h"
 
 namespace rt {

@@ -1,4 +1,4 @@
-// rtconvert's JSON -> XML writer: the inverse of the XML reading of rt/scene_tree.h.
+// rtconvert's JSON -> XML writer: the inverse of the XML reading of rt/loader/scene_tree.h.
 // "_name" keys become attributes, "_data" the element's text, arrays repeated
 // elements, null an empty element, numbers and booleans their JSON text.
 // JSON -> XML -> JSON gives back the same tree up to the reader's whitespace

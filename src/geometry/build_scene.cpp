@@ -6,8 +6,8 @@
 #include <utility>
 #include <vector>
 
-#include "rt/scene.h"
-#include "rt/threads.h"
+#include "rt/geometry/scene.h"
+#include "rt/core/threads.h"
 
 namespace rt {
 namespace {

@@ -1,7 +1,7 @@
-// ShapeNames::name: a primitive as the scene file names it (rt/scene.h).
+// ShapeNames::name: a primitive as the scene file names it (rt/geometry/scene.h).
 #include <string>
 
-#include "rt/scene.h"
+#include "rt/geometry/scene.h"
 
 namespace rt {
 

@@ -1,6 +1,6 @@
-// The 5x7 pixel font of rt/bitmap_font.h. Each glyph is 7 rows of 5 columns, '#' a set
+// The 5x7 pixel font of rt/image/bitmap_font.h. Each glyph is 7 rows of 5 columns, '#' a set
 // pixel, top row first.
-#include "rt/bitmap_font.h"
+#include "rt/image/bitmap_font.h"
 
 #include <cctype>
 #include <cstddef>

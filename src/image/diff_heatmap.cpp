@@ -1,12 +1,12 @@
-// The heatmap of where two images differ and its legend strip (rt/image_diff.h): one
+// The heatmap of where two images differ and its legend strip (rt/image/image_diff.h): one
 // colour rule for both, so the legend shows exactly the colours the heatmap uses.
 #include <algorithm>
 #include <cstdint>
 #include <cstdlib>
 #include <string>
 
-#include "rt/bitmap_font.h"
-#include "rt/image_diff.h"
+#include "rt/image/bitmap_font.h"
+#include "rt/image/image_diff.h"
 
 namespace rt {
 namespace {

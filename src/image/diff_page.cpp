@@ -1,10 +1,10 @@
-// The HTML page of a comparison (rt/image_diff.h, rtdiff --html).
+// The HTML page of a comparison (rt/image/image_diff.h, rtdiff --html).
 #include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
 
-#include "rt/image_diff.h"
+#include "rt/image/image_diff.h"
 
 namespace rt {
 namespace {

@@ -1,5 +1,5 @@
-// Image comparison (rt/image_diff.h): one measure for ./rtdiff and the conformance tests.
-#include "rt/image_diff.h"
+// Image comparison (rt/image/image_diff.h): one measure for ./rtdiff and the conformance tests.
+#include "rt/image/image_diff.h"
 
 #include <stb/stb_image.h>
 
@@ -12,7 +12,7 @@
 #include <filesystem>
 #include <limits>
 
-#include "rt/error.h"
+#include "rt/core/error.h"
 
 namespace rt {
 

@@ -1,4 +1,4 @@
-// stb_image's implementation (the PNG reader of the image comparison, rt/image_diff.h, which
+// stb_image's implementation (the PNG reader of the image comparison, rt/image/image_diff.h, which
 // ./rtdiff and the tests use; ./raytracer reads no image), compiled here from the header of
 // Debian's libstb-dev (or the tarball's third_party/stb/) instead of linking libstb. Apart
 // from stb_impl.cpp (the writer), so that building ./raytracer alone does not compile it:

@@ -6,7 +6,7 @@
 // used. Either way the pixels are the same, PNG being lossless.
 #include <cstdlib>
 
-#include "rt/memory.h"
+#include "rt/io/memory.h"
 
 // stb's image buffers (the filtered rows: as large as the image) from allocate_bytes,
 // for its huge pages.

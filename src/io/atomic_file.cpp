@@ -1,4 +1,4 @@
-#include "rt/atomic_file.h"
+#include "rt/io/atomic_file.h"
 
 #include <unistd.h>
 
@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <cstring>
 
-#include "rt/error.h"
+#include "rt/core/error.h"
 
 namespace rt {
 

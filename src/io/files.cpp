@@ -1,4 +1,4 @@
-#include "rt/files.h"
+#include "rt/io/files.h"
 
 #include <sys/stat.h>
 
@@ -7,7 +7,7 @@
 #include <cstdio>
 #include <cstring>
 
-#include "rt/error.h"
+#include "rt/core/error.h"
 
 namespace rt {
 

@@ -1,4 +1,4 @@
-#include "rt/memory.h"
+#include "rt/io/memory.h"
 
 #include <sys/mman.h>
 

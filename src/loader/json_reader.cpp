@@ -1,10 +1,10 @@
 // JSON scene text -> tree, with the one mapping of nlohmann's exceptions to our
-// messages (rt/scene_tree.h).
+// messages (rt/loader/scene_tree.h).
 #include <algorithm>
 #include <string>
 
-#include "rt/error.h"
-#include "rt/scene_tree.h"
+#include "rt/core/error.h"
+#include "rt/loader/scene_tree.h"
 
 namespace rt {
 namespace {

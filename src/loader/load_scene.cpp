@@ -1,9 +1,9 @@
-// The scene loader's entry points (rt/loader.h): the file's name picks the reader
+// The scene loader's entry points (rt/loader/load_scene.h): the file's name picks the reader
 // (JSON or the course's XML), each reader produces the same JSON tree
-// (rt/scene_tree.h), and scene_from_json turns that tree into a SceneDesc.
-#include "rt/files.h"
-#include "rt/loader.h"
-#include "rt/scene_tree.h"
+// (rt/loader/scene_tree.h), and scene_from_json turns that tree into a SceneDesc.
+#include "rt/io/files.h"
+#include "rt/loader/load_scene.h"
+#include "rt/loader/scene_tree.h"
 
 namespace rt {
 

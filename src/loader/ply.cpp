@@ -1,4 +1,4 @@
-// Our own PLY reader; the contract is in rt/ply.h.
+// Our own PLY reader; the contract is in rt/loader/ply.h.
 //
 // Strategy:
 //   1. The whole file is in memory: regular files of 1 MiB or more are mapped
@@ -17,7 +17,7 @@
 // (header and binary body; the offset is absolute in the file, for the header the
 // start of the offending line) or "<path>: line <n>: <what>" (ascii body; lines
 // are counted from the top of the file, header included).
-#include "rt/ply.h"
+#include "rt/loader/ply.h"
 
 #include <fcntl.h>
 #include <sys/mman.h>
@@ -33,7 +33,7 @@
 #include <string_view>
 #include <type_traits>
 
-#include "rt/error.h"
+#include "rt/core/error.h"
 
 #if defined(__GNUC__)
 #define RT_PLY_COLD __attribute__((cold, noinline))

@@ -1,4 +1,4 @@
-// The scene tree (rt/scene_tree.h) -> SceneDesc. Every value in the course's files is a
+// The scene tree (rt/loader/scene_tree.h) -> SceneDesc. Every value in the course's files is a
 // string ("1 2 3"); numbers are also accepted where one number is expected.
 // Every reference (material ids, vertex ids) is resolved and range-checked
 // here, once; errors name the file and the JSON pointer of the offending value.
@@ -12,12 +12,12 @@
 #include <sstream>
 #include <unordered_map>
 
-#include "rt/camera.h"
-#include "rt/error.h"
-#include "rt/files.h"
-#include "rt/ply.h"
-#include "rt/scene_tree.h"
-#include "rt/spelling.h"
+#include "rt/camera/camera.h"
+#include "rt/core/error.h"
+#include "rt/io/files.h"
+#include "rt/loader/ply.h"
+#include "rt/loader/scene_tree.h"
+#include "rt/loader/spelling.h"
 
 namespace rt {
 namespace {
@@ -100,7 +100,7 @@ private:
     std::unordered_map<std::string, uint32_t> material_ids_;  // _id -> index
     struct Unknown {
         int count = 0;
-        std::string suggestion;  // the valid key it is a near miss of (rt/spelling.h), or ""
+        std::string suggestion;  // the valid key it is a near miss of (rt/loader/spelling.h), or ""
     };
     std::map<std::string, Unknown> unknown_;  // generic key path -> occurrences
 

@@ -1,5 +1,5 @@
-// Near-miss suggestions for misspelt keys (rt/spelling.h).
-#include "rt/spelling.h"
+// Near-miss suggestions for misspelt keys (rt/loader/spelling.h).
+#include "rt/loader/spelling.h"
 
 #include <algorithm>
 #include <cctype>

@@ -1,5 +1,5 @@
 // The course's previous XML scene format read into the JSON tree of the JSON format
-// (rt/scene_tree.h), through pugixml (Debian libpugixml-dev).
+// (rt/loader/scene_tree.h), through pugixml (Debian libpugixml-dev).
 #ifndef RT_NO_XML  // built without pugixml (mk/convert.mk): XML is refused with an error
 #include <pugixml.hpp>
 #endif
@@ -9,8 +9,8 @@
 #include <cstddef>
 #include <cstring>
 
-#include "rt/error.h"
-#include "rt/scene_tree.h"
+#include "rt/core/error.h"
+#include "rt/loader/scene_tree.h"
 
 namespace rt {
 namespace {

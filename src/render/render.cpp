@@ -9,9 +9,9 @@
 #include <thread>
 #include <vector>
 
-#include "rt/render.h"
-#include "rt/shading.h"
-#include "rt/threads.h"
+#include "rt/render/render.h"
+#include "rt/shading/shading.h"
+#include "rt/core/threads.h"
 
 namespace rt {
 

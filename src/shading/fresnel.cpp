@@ -1,8 +1,8 @@
-// The Fresnel equations (spec 2.6; rt/shading.h).
+// The Fresnel equations (spec 2.6; rt/shading/shading.h).
 #include <algorithm>
 #include <cmath>
 
-#include "rt/shading.h"
+#include "rt/shading/shading.h"
 
 namespace rt {
 

@@ -3,10 +3,10 @@
 #include <cmath>
 #include <limits>
 
-#include "rt/intersect.h"
-#include "rt/scene.h"
-#include "rt/shading.h"
-#include "rt/trace.h"
+#include "rt/geometry/intersect.h"
+#include "rt/geometry/scene.h"
+#include "rt/shading/shading.h"
+#include "rt/shading/trace.h"
 
 namespace rt {
 namespace {

@@ -1,5 +1,5 @@
-// One pixel's ray tree, recorded by the integrator itself (rt/trace.h).
-#include "rt/trace.h"
+// One pixel's ray tree, recorded by the integrator itself (rt/shading/trace.h).
+#include "rt/shading/trace.h"
 
 namespace rt {
 

@@ -1,5 +1,5 @@
 // rtdiff: compares two images, or every image of the same name in two folders, with
-// the measure the conformance tests use (rt/image_diff.h; issue 15).
+// the measure the conformance tests use (rt/image/image_diff.h; issue 15).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "rt/atomic_file.h"
-#include "rt/cli.h"
-#include "rt/error.h"
-#include "rt/image.h"
-#include "rt/image_diff.h"
+#include "rt/io/atomic_file.h"
+#include "rt/cli/options.h"
+#include "rt/core/error.h"
+#include "rt/image/image.h"
+#include "rt/image/image_diff.h"
 
 namespace fs = std::filesystem;
 

@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "rt/error.h"
-#include "rt/loader.h"
-#include "rt/scene.h"
+#include "rt/core/error.h"
+#include "rt/loader/load_scene.h"
+#include "rt/geometry/scene.h"
 
 namespace {
 

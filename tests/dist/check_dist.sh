@@ -24,7 +24,7 @@ fail() { echo "dist-check: FAIL: $*" >&2; exit 1; }
 mkdir "$work/src"
 tar -xf "$tarball" -C "$work/src"
 cd "$work/src"
-for f in Makefile README.md src/main.cpp src/image/stb_impl.cpp include/rt/render.h scenes/showcase.json \
+for f in Makefile README.md src/main.cpp src/image/stb_impl.cpp include/rt/render/render.h scenes/showcase.json \
          third_party/nlohmann/json.hpp third_party/CLI/CLI.hpp third_party/stb/stb_image_write.h third_party/stb/stb_image.h; do
     [ -f "$f" ] || fail "the tarball lacks $f"
 done

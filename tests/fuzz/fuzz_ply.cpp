@@ -8,8 +8,8 @@
 #include <cstdint>
 #include <cstdlib>
 
-#include "rt/error.h"
-#include "rt/ply.h"
+#include "rt/core/error.h"
+#include "rt/loader/ply.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     try {

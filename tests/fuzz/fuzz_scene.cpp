@@ -14,10 +14,10 @@
 #include <cstdlib>
 #include <string>
 
-#include "rt/error.h"
-#include "rt/loader.h"
-#include "rt/scene.h"
-#include "rt/shading.h"
+#include "rt/core/error.h"
+#include "rt/loader/load_scene.h"
+#include "rt/geometry/scene.h"
+#include "rt/shading/shading.h"
 
 namespace {
 

@@ -2,9 +2,9 @@
 #pragma once
 #include <functional>
 
-#include "rt/image.h"
-#include "rt/scene.h"
-#include "rt/shading.h"
+#include "rt/image/image.h"
+#include "rt/geometry/scene.h"
+#include "rt/shading/shading.h"
 
 namespace rt {
 
@@ -12,7 +12,7 @@ struct RenderOptions {
     int threads = 0;   // 0: all hardware threads
     bool cull = true;  // back-face culling of camera and reflection rays (spec 2.9)
     Rounding rounding = Rounding::Truncate;
-    double min_weight = kDefaultMinWeight;  // rays of a smaller weight are not traced (rt/shading.h)
+    double min_weight = kDefaultMinWeight;  // rays of a smaller weight are not traced (rt/shading/shading.h)
     // When set, called on the calling thread about every `progress_interval` seconds
     // while the image renders, with the tiles finished so far and the tile count (never
     // after the last tile: a render shorter than one interval makes no call). The

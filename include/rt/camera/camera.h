@@ -3,8 +3,8 @@
 #pragma once
 #include <string>
 
-#include "rt/math.h"
-#include "rt/scene_desc.h"
+#include "rt/core/math.h"
+#include "rt/loader/scene_desc.h"
 
 namespace rt {
 

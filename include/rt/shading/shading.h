@@ -3,7 +3,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "rt/math.h"
+#include "rt/core/math.h"
 
 namespace rt {
 
@@ -85,7 +85,7 @@ struct alignas(64) TraceCache {
 };
 
 // Radiance (in 0..255 units, unclamped) arriving at the camera along a primary ray.
-// `record`, when given, receives the ray tree (rt/trace.h); renders pass none.
+// `record`, when given, receives the ray tree (rt/shading/trace.h); renders pass none.
 Vec3 trace_primary(const Scene& scene, const Ray& ray, const TraceOptions& options, TraceCache* cache = nullptr,
                    RayTrace* record = nullptr);
 // trace_primary for n primary rays at once (1 <= n <= kPacket): the same radiance

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "rt/image.h"
+#include "rt/image/image.h"
 
 namespace rt {
 

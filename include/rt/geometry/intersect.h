@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <limits>
 
-#include "rt/math.h"
+#include "rt/core/math.h"
 
 namespace rt {
 

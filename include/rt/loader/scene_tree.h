@@ -1,6 +1,6 @@
 // The JSON tree every scene file is read into, and the one step from that tree to a
-// SceneDesc. The scene loader (rt/loader.h) picks the reader by the file's name; rtconvert
-// (rt/convert.h) reads and writes the trees themselves.
+// SceneDesc. The scene loader (rt/loader/load_scene.h) picks the reader by the file's name; rtconvert
+// (rt/convert/convert.h) reads and writes the trees themselves.
 //
 // A JSON file is parsed as it is. An XML file (the course's previous format) becomes
 // the tree the course's own conversion produced for its 2025 JSON files:
@@ -20,7 +20,7 @@
 
 #include <string>
 
-#include "rt/scene_desc.h"
+#include "rt/loader/scene_desc.h"
 
 namespace rt {
 

@@ -8,10 +8,10 @@
 #include <string>
 #include <vector>
 
-#include "rt/image.h"
-#include "rt/math.h"
-#include "rt/scene.h"
-#include "rt/shading.h"
+#include "rt/image/image.h"
+#include "rt/core/math.h"
+#include "rt/geometry/scene.h"
+#include "rt/shading/shading.h"
 
 namespace rt {
 

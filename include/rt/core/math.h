@@ -7,7 +7,7 @@
 #include <limits>
 #include <type_traits>
 
-#include "rt/real.h"
+#include "rt/core/real.h"
 
 namespace rt {
 

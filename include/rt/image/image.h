@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "rt/math.h"
+#include "rt/core/math.h"
 
 namespace rt {
 
@@ -30,7 +30,7 @@ inline uint8_t quantize(Real value, Rounding rounding) {
     return static_cast<uint8_t>(rounding == Rounding::Nearest ? std::floor(c + Real(0.5)) : c);
 }
 
-// Writes a PNG atomically (write_file_atomic, rt/atomic_file.h): to a temporary name
+// Writes a PNG atomically (write_file_atomic, rt/io/atomic_file.h): to a temporary name
 // beside `path`, then renamed over it, so a failure never leaves a half-written image. Throws rt::InputError naming
 // `path`.
 void write_png(const Image& image, const std::string& path);

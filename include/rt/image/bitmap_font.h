@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <string>
 
-#include "rt/image.h"
+#include "rt/image/image.h"
 
 namespace rt {
 

@@ -15,11 +15,11 @@
 #include <utility>
 #include <vector>
 
-#include "rt/bvh.h"
-#include "rt/camera.h"
-#include "rt/intersect.h"
-#include "rt/scene_desc.h"
-#include "rt/uninit_vector.h"
+#include "rt/bvh/bvh.h"
+#include "rt/camera/camera.h"
+#include "rt/geometry/intersect.h"
+#include "rt/loader/scene_desc.h"
+#include "rt/core/uninit_vector.h"
 
 namespace rt {
 
@@ -46,11 +46,11 @@ struct SceneSetup {
 // closest-hit tie-break, so their order is part of the images.
 //
 // To add a shape (-Wswitch-enum points at every switch to extend):
-//  1. include/rt/scene.h (here): its struct (with a `material`); its enumerator in
+//  1. include/rt/geometry/scene.h (here): its struct (with a `material`); its enumerator in
 //     ShapeKind and kShapeKinds (a bounded shape goes before Plane); its array in
 //     Geometry; its case in Geometry's shape_of (the one decoding of an id), count,
 //     bounds, intersect and surface.
-//  2. include/rt/intersect.h: its ray test, beside intersect_sphere.
+//  2. include/rt/geometry/intersect.h: its ray test, beside intersect_sphere.
 //  3. src/geometry/build_scene.cpp: its array filled from the SceneDesc (build()).
 // The loader reads it into the SceneDesc (scene_desc.h, src/loader/scene_from_json.cpp).
 // A new unbounded shape also needs the planes' loops in src/bvh/traverse.cpp.

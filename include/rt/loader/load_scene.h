@@ -1,10 +1,10 @@
 // Scene loading: JSON (or the course's older XML) text -> SceneDesc (plain structs,
 // all ids resolved and checked). Both formats are read into the same JSON tree and
-// walked by one function (rt/scene_tree.h).
+// walked by one function (rt/loader/scene_tree.h).
 #pragma once
 #include <string>
 
-#include "rt/scene_desc.h"
+#include "rt/loader/scene_desc.h"
 
 namespace rt {
 
@@ -18,7 +18,7 @@ SceneDesc load_scene(const std::string& path);
 SceneDesc parse_scene(const std::string& json_text, const std::string& path);
 
 // Parses a scene in the course's XML format held in memory: the XML is turned into the
-// JSON tree the course's conversion produces (rt/scene_tree.h) and loaded like a JSON scene,
+// JSON tree the course's conversion produces (rt/loader/scene_tree.h) and loaded like a JSON scene,
 // so error places are JSON pointers of that tree (/Scene/Objects/Sphere/2/Radius).
 SceneDesc parse_scene_xml(const std::string& xml_text, const std::string& path);
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "rt/scene_desc.h"
+#include "rt/loader/scene_desc.h"
 
 namespace rt {
 
@@ -34,7 +34,7 @@ struct ConvertResult {
 };
 
 // Converts `input` to `output`, the direction chosen by their extensions:
-//   .xml  -> .json   the course's conversion (rt/scene_tree.h); .json -> .xml its inverse;
+//   .xml  -> .json   the course's conversion (rt/loader/scene_tree.h); .json -> .xml its inverse;
 //                    .json -> .json and .xml -> .xml rewrite (relative PLY paths are
 //                    adjusted whenever the output lands in another folder)
 //   .obj  -> .json/.xml  scene file + one binary PLY per mesh beside it (<stem>_<n>.ply)

@@ -18,8 +18,8 @@
 #include <type_traits>
 #include <vector>
 
-#include "rt/math.h"
-#include "rt/uninit_vector.h"
+#include "rt/core/math.h"
+#include "rt/core/uninit_vector.h"
 
 namespace rt {
 
@@ -117,7 +117,7 @@ public:
         bytes_ = 0;
     }
     // Storage for `capacity` nodes, uninitialised; then set_size(n) with n <= capacity.
-    // Large arrays ask for transparent huge pages (allocate_bytes, rt/memory.h).
+    // Large arrays ask for transparent huge pages (allocate_bytes, rt/io/memory.h).
     void allocate(size_t capacity);
     void set_size(size_t n) { size_ = n; }
     // Gives the whole pages past size() back to the system (after nodes were

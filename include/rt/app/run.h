@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "rt/bvh.h"
-#include "rt/render.h"
+#include "rt/bvh/bvh.h"
+#include "rt/render/render.h"
 
 namespace rt {
 
@@ -92,7 +92,7 @@ struct PixelTraceRequest {
 };
 
 // Loads and builds `scene_path` as run_scenes does (the same options and overrides),
-// traces the pixel (rt/trace.h), prints the tree on stdout and writes the JSON file.
+// traces the pixel (rt/shading/trace.h), prints the tree on stdout and writes the JSON file.
 // Returns 0, or 1 for bad input or an unwritable JSON file (its line printed); throws
 // UsageError when the camera or the pixel is not in the scene.
 int run_trace(const std::string& scene_path, const RunOptions& options, const PixelTraceRequest& request);

@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "rt/math.h"
+#include "rt/core/math.h"
 
 namespace rt {
 
