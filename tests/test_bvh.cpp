@@ -28,6 +28,7 @@
 #include "rt/bvh/bvh.h"
 #include "rt/geometry/intersect.h"
 #include "rt/loader/load_scene.h"
+#include "rt/bvh/traverse.h"
 #include "rt/geometry/scene.h"
 
 namespace {
@@ -63,7 +64,7 @@ uint32_t global_id(const rt::Scene& s, const rt::Hit& h) {
         case rt::ShapeKind::Sphere:
             return static_cast<uint32_t>(s.geometry.triangles.size()) + h.index;
         case rt::ShapeKind::Plane:
-            return static_cast<uint32_t>(s.geometry.triangles.size() + s.geometry.spheres.size()) + h.index;
+            return static_cast<uint32_t>(s.geometry.triangles.size() + s.geometry.all<rt::Sphere>().size()) + h.index;
     }
     return ~0u;
 }
@@ -105,18 +106,18 @@ Answer brute_closest(const rt::Scene& s, const rt::Ray& r, Real tmin, Real tmax,
             std::copy(w, w + 3, a.w);
         }
     }
-    for (size_t i = 0; i < s.geometry.spheres.size(); ++i, ++gid) {
+    for (size_t i = 0; i < s.geometry.all<rt::Sphere>().size(); ++i, ++gid) {
         Real t;
-        if (rt::intersect_sphere(r, s.geometry.spheres[i].center, s.geometry.spheres[i].radius, tmin, tmax, t) &&
+        if (rt::intersect_sphere(r, s.geometry.all<rt::Sphere>()[i].center, s.geometry.all<rt::Sphere>()[i].radius, tmin, tmax, t) &&
             t < a.t) {
             a.found = true;
             a.t = t;
             a.gid = gid;
         }
     }
-    for (size_t i = 0; i < s.geometry.planes.size(); ++i, ++gid) {
+    for (size_t i = 0; i < s.geometry.all<rt::Plane>().size(); ++i, ++gid) {
         Real t;
-        if (rt::intersect_plane(r, s.geometry.planes[i].point, s.geometry.planes[i].normal, tmin, tmax, t) && t < a.t) {
+        if (rt::intersect_plane(r, s.geometry.all<rt::Plane>()[i].point, s.geometry.all<rt::Plane>()[i].normal, tmin, tmax, t) && t < a.t) {
             a.found = true;
             a.t = t;
             a.gid = gid;
@@ -135,9 +136,9 @@ bool brute_any(const rt::Scene& s, const rt::Ray& r, Real tmin, Real tmax) {
                             : rt::intersect_triangle(p, a, b, c, tmin, tmax, t, w))
             return true;
     }
-    for (const rt::Sphere& sp : s.geometry.spheres)
+    for (const rt::Sphere& sp : s.geometry.all<rt::Sphere>())
         if (rt::intersect_sphere(r, sp.center, sp.radius, tmin, tmax, t)) return true;
-    for (const rt::Plane& pl : s.geometry.planes)
+    for (const rt::Plane& pl : s.geometry.all<rt::Plane>())
         if (rt::intersect_plane(r, pl.point, pl.normal, tmin, tmax, t)) return true;
     return false;
 }
@@ -319,7 +320,7 @@ rt::Box prim_bounds(const rt::Scene& s, uint32_t id) {
     if (id < s.geometry.triangles.size()) {
         for (uint32_t v : s.geometry.triangles[id].v) b.extend(s.geometry.positions[v]);
     } else {
-        const rt::Sphere& sp = s.geometry.spheres[id - s.geometry.triangles.size()];
+        const rt::Sphere& sp = s.geometry.all<rt::Sphere>()[id - s.geometry.triangles.size()];
         b.extend(sp.center - Vec3{sp.radius, sp.radius, sp.radius});
         b.extend(sp.center + Vec3{sp.radius, sp.radius, sp.radius});
     }
@@ -328,7 +329,7 @@ rt::Box prim_bounds(const rt::Scene& s, uint32_t id) {
 
 void check_structure(const rt::Scene& s) {
     const rt::Bvh& bvh = s.accel.bvh;
-    const size_t n = s.geometry.triangles.size() + s.geometry.spheres.size();
+    const size_t n = s.geometry.triangles.size() + s.geometry.all<rt::Sphere>().size();
     ASSERT_EQ(bvh.prims.size(), n);
     if (n == 0) {
         EXPECT_TRUE(bvh.nodes.empty());
@@ -485,12 +486,12 @@ rt::SceneDesc random_scene(const SoupSpec& spec, Rng& rng) {
     if (!m.indices.empty()) d.meshes.push_back(m);
     for (int i = 0; i < spec.spheres; ++i) {
         if (i > 0 && rng() % 8 == 0) {
-            d.spheres.push_back(d.spheres[pick(rng, d.spheres.size())]);  // coincident: exact tie
+            d.all<rt::Sphere>().push_back(d.all<rt::Sphere>()[pick(rng, d.all<rt::Sphere>().size())]);  // coincident: exact tie
         } else {
             rt::SphereDesc sp;
             sp.center = point();
             sp.radius = spec.size * uniform(rng, 0.01, 1);
-            d.spheres.push_back(sp);
+            d.all<rt::Sphere>().push_back(sp);
         }
     }
     for (int i = 0; i < spec.planes; ++i) {
@@ -498,7 +499,7 @@ rt::SceneDesc random_scene(const SoupSpec& spec, Rng& rng) {
         pl.point = point() * Real(1.5);
         pl.normal = (i == 0) ? Vec3{0, 0, 1} : random_unit(rng);
         if (i == 0) pl.point = {0, 0, 0};  // coincides with the clustered triangles at z = 0
-        d.planes.push_back(pl);
+        d.all<rt::Plane>().push_back(pl);
     }
     return d;
 }
@@ -515,11 +516,11 @@ void shoot(const rt::Scene& s, Checker& ck, Rng& rng, int rays, Real extent) {
         // when there are no triangles); 4: at a sphere's surface (a triangle when there are no
         // spheres); 5: axis-aligned.
         int mode = k % 6;
-        if (s.geometry.triangles.empty() && s.geometry.spheres.empty())
+        if (s.geometry.triangles.empty() && s.geometry.all<rt::Sphere>().empty())
             mode = (mode == 5) ? 5 : 0;
         else if (mode >= 1 && mode <= 3 && s.geometry.triangles.empty())
             mode = 4;
-        else if (mode == 4 && s.geometry.spheres.empty())
+        else if (mode == 4 && s.geometry.all<rt::Sphere>().empty())
             mode = 3;
         if (mode == 0) {
             dir = random_unit(rng);
@@ -539,7 +540,7 @@ void shoot(const rt::Scene& s, Checker& ck, Rng& rng, int rays, Real extent) {
             }
             dir = target - org;
         } else if (mode == 4) {
-            const rt::Sphere& sp = s.geometry.spheres[pick(rng, s.geometry.spheres.size())];
+            const rt::Sphere& sp = s.geometry.all<rt::Sphere>()[pick(rng, s.geometry.all<rt::Sphere>().size())];
             dir = sp.center + random_unit(rng) * sp.radius - org;
         } else {
             // Axis-aligned (two zero components; sometimes negative zeros).
@@ -684,7 +685,7 @@ void run_soup(const SoupSpec& spec, int rays, Vertices vertices = Vertices::kDou
     ck.finish();
     EXPECT_EQ(ck.mismatches, 0) << "of " << ck.queries << " queries";
     // The rays must actually hit things, or the comparison says little.
-    if (!s.geometry.triangles.empty() || !s.geometry.spheres.empty()) {
+    if (!s.geometry.triangles.empty() || !s.geometry.all<rt::Sphere>().empty()) {
         EXPECT_GT(ck.hits, ck.closest_queries / 20);
     }
 }
@@ -920,7 +921,7 @@ TEST(BvhProperty, AllCoincident) {
     m.positions = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}};
     for (int i = 0; i < 3000; ++i) m.indices.insert(m.indices.end(), {0, 1, 2});
     d.meshes.push_back(m);
-    for (int i = 0; i < 500; ++i) d.spheres.push_back({0, {0, 0, 5}, 1, "1"});
+    for (int i = 0; i < 500; ++i) d.all<rt::Sphere>().push_back({{0, "1"}, {0, 0, 5}, 1});
     const rt::Scene s = rt::build_scene(d);
     check_structure(s);
     EXPECT_LE(s.accel.bvh.depth, 64);
@@ -953,8 +954,8 @@ TEST(BvhProperty, TiesAcrossKinds) {
     m.positions = {{-1, -1, 5}, {1, -1, 5}, {0, 1, 5}};
     m.indices = {0, 1, 2};
     d.meshes.push_back(m);
-    d.spheres.push_back({0, {0, 0, 6}, 1, "1"});  // near root at z = 5
-    d.planes.push_back({0, {0, 0, 5}, {0, 0, -1}, "1"});
+    d.all<rt::Sphere>().push_back({{0, "1"}, {0, 0, 6}, 1});  // near root at z = 5
+    d.all<rt::Plane>().push_back({{0, "1"}, {0, 0, 5}, {0, 0, -1}});
     const rt::Ray r{{0, 0, 0}, {0, 0, 1}};
     rt::Hit h;
     {
@@ -970,7 +971,7 @@ TEST(BvhProperty, TiesAcrossKinds) {
         EXPECT_EQ(h.kind, rt::ShapeKind::Sphere);
         EXPECT_EQ(h.t, 5);
     }
-    d.spheres.clear();
+    d.all<rt::Sphere>().clear();
     {
         const rt::Scene s = rt::build_scene(d);
         ASSERT_TRUE(rt::closest_hit(s, r, 0, HUGE_VAL, false, h));

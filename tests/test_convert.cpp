@@ -105,15 +105,15 @@ std::string canonical(const std::string& path) {
         if (x.material != y.material || x.shading != y.shading || !positions || x.indices != y.indices || !sources)
             differ("mesh " + std::to_string(i) + " (" + x.source + " vs " + y.source + ")");
     }
-    if (a.spheres.size() != b.spheres.size()) differ("sphere count");
-    for (size_t i = 0; i < std::min(a.spheres.size(), b.spheres.size()); ++i)
-        if (a.spheres[i].material != b.spheres[i].material || !same(a.spheres[i].center, b.spheres[i].center) ||
-            a.spheres[i].radius != b.spheres[i].radius)
+    if (a.all<rt::Sphere>().size() != b.all<rt::Sphere>().size()) differ("sphere count");
+    for (size_t i = 0; i < std::min(a.all<rt::Sphere>().size(), b.all<rt::Sphere>().size()); ++i)
+        if (a.all<rt::Sphere>()[i].material != b.all<rt::Sphere>()[i].material || !same(a.all<rt::Sphere>()[i].center, b.all<rt::Sphere>()[i].center) ||
+            a.all<rt::Sphere>()[i].radius != b.all<rt::Sphere>()[i].radius)
             differ("sphere " + std::to_string(i));
-    if (a.planes.size() != b.planes.size()) differ("plane count");
-    for (size_t i = 0; i < std::min(a.planes.size(), b.planes.size()); ++i)
-        if (a.planes[i].material != b.planes[i].material || !same(a.planes[i].point, b.planes[i].point) ||
-            !same(a.planes[i].normal, b.planes[i].normal))
+    if (a.all<rt::Plane>().size() != b.all<rt::Plane>().size()) differ("plane count");
+    for (size_t i = 0; i < std::min(a.all<rt::Plane>().size(), b.all<rt::Plane>().size()); ++i)
+        if (a.all<rt::Plane>()[i].material != b.all<rt::Plane>()[i].material || !same(a.all<rt::Plane>()[i].point, b.all<rt::Plane>()[i].point) ||
+            !same(a.all<rt::Plane>()[i].normal, b.all<rt::Plane>()[i].normal))
             differ("plane " + std::to_string(i));
     if (why.str().empty()) return ::testing::AssertionSuccess();
     return ::testing::AssertionFailure() << why.str();
@@ -640,7 +640,7 @@ TEST(ObjExport, OfficialXmlSceneExports) {
     rt::convert_file(path, tmp / "cb.obj");
     const rt::SceneDesc src = rt::load_scene(path);
     const rt::SceneDesc back = (rt::convert_file(tmp / "cb.obj", tmp / "cb.json"), rt::load_scene(tmp / "cb.json"));
-    EXPECT_EQ(triangle_count(back), triangle_count(src) + src.spheres.size() * 2 * 48 * 23);
+    EXPECT_EQ(triangle_count(back), triangle_count(src) + src.all<rt::Sphere>().size() * 2 * 48 * 23);
 }
 
 // ---- The command line ------------------------------------------------------------------

@@ -18,6 +18,7 @@
 #include <utility>
 #include <vector>
 
+#include "rt/bvh/traverse.h"
 #include "rt/camera/camera.h"
 #include "rt/geometry/intersect.h"
 #include "rt/loader/load_scene.h"
@@ -530,14 +531,14 @@ TEST(GeometryScene, TrianglesTakeTheirMeshsMaterialAndShading) {
 TEST(GeometryScene, ClosestOfMixedPrimitives) {
     // Along -z from z = 10: plane z = 0 at t 10, sphere radius 1 at z = 3 (t = 6), triangle at z = 5 (t = 5).
     rt::SceneDesc d = empty_desc();
-    d.planes.push_back({0, {0, 0, 0}, {0, 0, 2}, "1"});  // normal gets normalised by build_scene
-    d.spheres.push_back({0, {0, 0, 3}, 1, "1"});
+    d.all<rt::Plane>().push_back({{0, "1"}, {0, 0, 0}, {0, 0, 2}});  // normal gets normalised by build_scene
+    d.all<rt::Sphere>().push_back({{0, "1"}, {0, 0, 3}, 1});
     rt::MeshDesc m;
     m.positions = {{-1, -1, 5}, {1, -1, 5}, {0, 1, 5}};
     m.indices = {0, 1, 2};
     d.meshes.push_back(m);
     const rt::Scene s = rt::build_scene(d);
-    EXPECT_NEAR(s.geometry.planes[0].normal.z, 1, kTol);
+    EXPECT_NEAR(s.geometry.all<rt::Plane>()[0].normal.z, 1, kTol);
     const rt::Ray r{{0, 0, 10}, {0, 0, -1}};
     rt::Hit h;
     ASSERT_TRUE(rt::closest_hit(s, r, 0, HUGE_VAL, true, h));

@@ -161,17 +161,17 @@ void expect_same(const rt::SceneDesc& a, const rt::SceneDesc& b) {
         for (size_t f = 0; f < x.indices.size() / 3; ++f)
             for (int k = 0; k < 3; ++k) expect_vec(corner(x, f, k), corner(y, f, k), "mesh corner");
     }
-    ASSERT_EQ(a.spheres.size(), b.spheres.size());
-    for (size_t i = 0; i < a.spheres.size(); ++i) {
-        EXPECT_EQ(a.spheres[i].material, b.spheres[i].material);
-        expect_vec(a.spheres[i].center, b.spheres[i].center, "sphere centre");
-        EXPECT_EQ(a.spheres[i].radius, b.spheres[i].radius);
+    ASSERT_EQ(a.all<rt::Sphere>().size(), b.all<rt::Sphere>().size());
+    for (size_t i = 0; i < a.all<rt::Sphere>().size(); ++i) {
+        EXPECT_EQ(a.all<rt::Sphere>()[i].material, b.all<rt::Sphere>()[i].material);
+        expect_vec(a.all<rt::Sphere>()[i].center, b.all<rt::Sphere>()[i].center, "sphere centre");
+        EXPECT_EQ(a.all<rt::Sphere>()[i].radius, b.all<rt::Sphere>()[i].radius);
     }
-    ASSERT_EQ(a.planes.size(), b.planes.size());
-    for (size_t i = 0; i < a.planes.size(); ++i) {
-        EXPECT_EQ(a.planes[i].material, b.planes[i].material);
-        expect_vec(a.planes[i].point, b.planes[i].point, "plane point");
-        expect_vec(a.planes[i].normal, b.planes[i].normal, "plane normal");
+    ASSERT_EQ(a.all<rt::Plane>().size(), b.all<rt::Plane>().size());
+    for (size_t i = 0; i < a.all<rt::Plane>().size(); ++i) {
+        EXPECT_EQ(a.all<rt::Plane>()[i].material, b.all<rt::Plane>()[i].material);
+        expect_vec(a.all<rt::Plane>()[i].point, b.all<rt::Plane>()[i].point, "plane point");
+        expect_vec(a.all<rt::Plane>()[i].normal, b.all<rt::Plane>()[i].normal, "plane normal");
     }
 }
 
@@ -184,8 +184,8 @@ TEST(LoaderValid, SpecSampleScene) {
     ASSERT_EQ(d.point_lights.size(), 1u);
     ASSERT_EQ(d.materials.size(), 1u);
     ASSERT_EQ(d.meshes.size(), 2u);  // the Mesh and the Triangle (a one-triangle mesh)
-    ASSERT_EQ(d.spheres.size(), 1u);
-    ASSERT_EQ(d.planes.size(), 1u);
+    ASSERT_EQ(d.all<rt::Sphere>().size(), 1u);
+    ASSERT_EQ(d.all<rt::Plane>().size(), 1u);
 
     expect_vec(d.background, {0, 0, 0}, "background");
     EXPECT_EQ(d.shadow_ray_epsilon, Real(1e-3));
@@ -231,11 +231,11 @@ TEST(LoaderValid, SpecSampleScene) {
     EXPECT_EQ(tri.positions.size(), 3u);
     for (int k = 0; k < 3; ++k) expect_vec(corner(tri, 0, k), kSampleVerts[4 + k], "triangle corner");  // 5 6 7
 
-    EXPECT_EQ(d.spheres[0].material, 0u);
-    expect_vec(d.spheres[0].center, {-0.875, 1, -2}, "sphere centre (vertex 8)");
-    EXPECT_EQ(d.spheres[0].radius, Real(0.3));
-    expect_vec(d.planes[0].point, {0, -0.5, 0}, "plane point (vertex 9)");
-    expect_vec(d.planes[0].normal, {0, 1, 0}, "plane normal");
+    EXPECT_EQ(d.all<rt::Sphere>()[0].material, 0u);
+    expect_vec(d.all<rt::Sphere>()[0].center, {-0.875, 1, -2}, "sphere centre (vertex 8)");
+    EXPECT_EQ(d.all<rt::Sphere>()[0].radius, Real(0.3));
+    expect_vec(d.all<rt::Plane>()[0].point, {0, -0.5, 0}, "plane point (vertex 9)");
+    expect_vec(d.all<rt::Plane>()[0].normal, {0, 1, 0}, "plane normal");
     EXPECT_TRUE(d.warnings.empty()) << d.warnings.front();
 }
 
@@ -252,8 +252,8 @@ TEST(LoaderValid, DefaultsWhenAbsent) {
     EXPECT_TRUE(d.point_lights.empty());
     EXPECT_TRUE(d.materials.empty());
     EXPECT_TRUE(d.meshes.empty());
-    EXPECT_TRUE(d.spheres.empty());
-    EXPECT_TRUE(d.planes.empty());
+    EXPECT_TRUE(d.all<rt::Sphere>().empty());
+    EXPECT_TRUE(d.all<rt::Plane>().empty());
     EXPECT_EQ(d.cameras.at(0).width, 4);
     EXPECT_EQ(d.cameras.at(0).height, 3);
 
@@ -314,10 +314,10 @@ TEST(LoaderValid, ArraysWithSeveralElements) {
     EXPECT_EQ(d.cameras[1].image_name, "second.png");
     ASSERT_EQ(d.materials.size(), 2u);
     expect_vec(d.materials[1].diffuse, {0.5, 0.25, 0.125}, "second material");
-    ASSERT_EQ(d.spheres.size(), 2u);
-    EXPECT_EQ(d.spheres[1].material, 1u);  // "_id" 2 -> index 1
-    expect_vec(d.spheres[1].center, kSampleVerts[0], "second sphere centre");
-    EXPECT_EQ(d.spheres[1].radius, 2.5);
+    ASSERT_EQ(d.all<rt::Sphere>().size(), 2u);
+    EXPECT_EQ(d.all<rt::Sphere>()[1].material, 1u);  // "_id" 2 -> index 1
+    expect_vec(d.all<rt::Sphere>()[1].center, kSampleVerts[0], "second sphere centre");
+    EXPECT_EQ(d.all<rt::Sphere>()[1].radius, 2.5);
 }
 
 TEST(LoaderValid, MaterialIdsResolveById) {
@@ -330,7 +330,7 @@ TEST(LoaderValid, MaterialIdsResolveById) {
     j["Scene"]["Materials"]["Material"] = json::array({m2, m1});
     const rt::SceneDesc d = parse(j.dump());
     ASSERT_EQ(d.materials.size(), 2u);
-    const uint32_t sm = d.spheres.at(0).material;
+    const uint32_t sm = d.all<rt::Sphere>().at(0).material;
     ASSERT_LT(sm, 2u);
     expect_vec(d.materials[sm].diffuse, {1, 1, 1}, "the sphere's material is _id 1");
 }

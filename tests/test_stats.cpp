@@ -431,8 +431,8 @@ TEST(Stats, RunScenesReturnsARecordPerImage) {
         EXPECT_EQ(r.camera, 1u);
         EXPECT_EQ(r.width, 32);
         EXPECT_EQ(r.height, 16);
-        EXPECT_EQ(r.figures.triangles, 2u + 3u + 4u);
-        EXPECT_EQ(r.figures.spheres, 3u);
+        EXPECT_EQ(r.figures.shapes[size_t(rt::ShapeKind::Triangle)], 2u + 3u + 4u);
+        EXPECT_EQ(r.figures.shapes[size_t(rt::ShapeKind::Sphere)], 3u);
         EXPECT_EQ(r.figures.max_recursion_depth, 2);
         EXPECT_EQ(r.render_stats.threads, 2);
         EXPECT_EQ(r.render_stats.rays.camera, 32u * 16u);

@@ -28,6 +28,16 @@ namespace {
 // "1 sphere", "3 spheres".
 std::string count_of(size_t n, const char* noun) { return std::to_string(n) + " " + noun + (n == 1 ? "" : "s"); }
 
+// The summary line's counts: what the BVH holds, every bounded kind ("5 triangles, 3 spheres").
+std::string bvh_counts(const SceneFigures& f) {
+    std::string s = count_of(f.shapes[size_t(ShapeKind::Triangle)], "triangle");
+    for_each_shape([&](auto k) {
+        using S = decltype(k);
+        if constexpr (S::kBounded) s += ", " + count_of(f.shapes[size_t(kind_of<S>)], S::kNoun);
+    });
+    return s;
+}
+
 double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
@@ -173,9 +183,8 @@ ImageRecord render_camera(const std::string& scene_path, const LoadedScene& s, s
         const std::string warned = s.warnings == 0 ? "" : ", " + count_of(s.warnings, "warning");
         const std::string runs =
             o.repeat <= 1 ? "" : "median (fastest..slowest) of " + std::to_string(o.repeat) + " runs: ";
-        std::fprintf(stderr, "%s: %dx%d, %s, %s, %s, %sload %s, bvh %s, render %s, write %.3fs%s%s\n", out.c_str(),
-                     cam.width, cam.height, kPrecisionName, count_of(s.figures.triangles, "triangle").c_str(),
-                     count_of(s.figures.spheres, "sphere").c_str(), runs.c_str(),
+        std::fprintf(stderr, "%s: %dx%d, %s, %s, %sload %s, bvh %s, render %s, write %.3fs%s%s\n", out.c_str(),
+                     cam.width, cam.height, kPrecisionName, bvh_counts(s.figures).c_str(), runs.c_str(),
                      seconds_text(s.load, o.repeat).c_str(), seconds_text(s.figures.seconds.bvh, o.repeat).c_str(),
                      seconds_text(r.render, o.repeat).c_str(), r.write.median, o.repeat <= 1 ? "" : " (written once)",
                      warned.c_str());
@@ -215,9 +224,7 @@ bool run_scene(const std::string& scene_path, const RunOptions& o, std::vector<I
 
 SceneFigures scene_figures(const Scene& scene, const SceneTimes& seconds) {
     SceneFigures f;
-    f.triangles = scene.geometry.triangles.size();
-    f.spheres = scene.geometry.spheres.size();
-    f.planes = scene.geometry.planes.size();
+    for (ShapeKind k : kShapeKinds) f.shapes[size_t(k)] = scene.geometry.count(k);
     f.lights = scene.setup.lights.size();
     f.degenerate = scene.report.degenerate_triangles;
     f.bvh_nodes = scene.accel.bvh.nodes.size();

@@ -87,11 +87,12 @@ std::string stats_json(const std::vector<ImageRecord>& images, const std::string
         j["width"] = r.width;
         j["height"] = r.height;
         const SceneFigures& f = r.figures;
-        j["primitives"] = {{"triangles", f.triangles},
-                           {"spheres", f.spheres},
-                           {"planes", f.planes},
-                           {"lights", f.lights},
-                           {"degenerate_skipped", f.degenerate}};
+        ordered_json prims;
+        prims["triangles"] = f.shapes[size_t(ShapeKind::Triangle)];
+        for_each_shape([&](auto k) { prims[decltype(k)::kNouns] = f.shapes[size_t(kind_of<decltype(k)>)]; });
+        prims["lights"] = f.lights;
+        prims["degenerate_skipped"] = f.degenerate;
+        j["primitives"] = prims;
         j["threads"] = r.render_stats.threads;
         j["cull"] = r.cull;
         j["max_recursion_depth"] = f.max_recursion_depth;

@@ -22,7 +22,7 @@
 #endif
 
 #include "rt/geometry/intersect.h"
-#include "rt/geometry/scene.h"
+#include "rt/bvh/traverse.h"
 
 namespace rt {
 namespace {
@@ -655,13 +655,18 @@ struct ClosestSearch {
     }
     // The unbounded shapes, outside the BVH; then the answer into `hit`.
     bool finish(Hit& hit) {
-        const std::vector<Plane>& planes = s->geometry.planes;
-        const uint32_t base = s->geometry.first_id(ShapeKind::Plane);
-        for (size_t i = 0; i < planes.size(); ++i) {
-            Real t;
-            if (intersect_plane(p.ray, planes[i].point, planes[i].normal, tmin, prim_limit, t))
-                consider(base + static_cast<uint32_t>(i), t, nullptr, 0);
-        }
+        for_each_shape([&](auto k) {
+            using S = decltype(k);
+            if constexpr (!S::kBounded) {
+                const std::vector<S>& shapes = s->geometry.all<S>();
+                const uint32_t base = s->geometry.first_id(kind_of<S>);
+                for (size_t i = 0; i < shapes.size(); ++i) {
+                    Real t;
+                    if (shapes[i].intersect(p.ray, tmin, prim_limit, t))
+                        consider(base + static_cast<uint32_t>(i), t, nullptr, 0);
+                }
+            }
+        });
         if (!found) return false;
         hit.t = best_t;
         const ShapeRef shape = s->geometry.shape_of(best_id);
@@ -838,10 +843,17 @@ enum class BeforeTree {
 
 inline BeforeTree any_hit_before_tree(const Scene& s, const Ray& ray, Real tmin, Real tmax, const uint32_t* occluder,
                                       RayPre& p, BoxRay& br) {
-    for (const Plane& pl : s.geometry.planes) {
-        Real t;
-        if (intersect_plane(ray, pl.point, pl.normal, tmin, tmax, t)) return BeforeTree::Blocked;
-    }
+    bool blocked = false;
+    for_each_shape([&](auto k) {
+        using S = decltype(k);
+        if constexpr (!S::kBounded) {
+            for (const S& shape : s.geometry.all<S>()) {
+                Real t;
+                if (!blocked && shape.intersect(ray, tmin, tmax, t)) blocked = true;
+            }
+        }
+    });
+    if (blocked) return BeforeTree::Blocked;
     if (s.accel.bvh.nodes.empty()) return BeforeTree::Clear;
     p = prepare(ray);
     if (occluder && *occluder != kNoOccluder) {

@@ -19,6 +19,16 @@ namespace fs = std::filesystem;
 namespace rt {
 namespace {
 
+// "3 spheres, 1 planes, ": each kind but triangles, as rtconvert's note counts them.
+std::string shape_counts(const SceneDesc& scene) {
+    std::string s;
+    for_each_shape([&](auto k) {
+        using S = decltype(k);
+        s += std::to_string(scene.all<S>().size()) + " " + S::kNouns + ", ";
+    });
+    return s;
+}
+
 using ojson = nlohmann::ordered_json;
 
 // The folder a file is in, absolute and normalised.
@@ -101,9 +111,8 @@ ConvertResult convert_file(const std::string& input, const std::string& output, 
         size_t triangles = 0;
         for (const MeshDesc& m : scene.meshes) triangles += m.indices.size() / 3;
         result.notes.push_back(std::to_string(scene.meshes.size()) + " meshes (" + std::to_string(triangles) +
-                               " triangles), " + std::to_string(scene.spheres.size()) + " spheres, " +
-                               std::to_string(scene.planes.size()) + " planes, " +
-                               std::to_string(scene.materials.size()) + " materials");
+                               " triangles), " + shape_counts(scene) + std::to_string(scene.materials.size()) +
+                               " materials");
         return result;
     }
 

@@ -45,6 +45,12 @@ public:
         for (size_t i : ids) text += " " + std::to_string(i);
         text += "\n";
     }
+    // A face of vertices numbered from 0 after the first `base` written.
+    void face(const std::vector<uint32_t>& local, size_t base) {
+        text += "f";
+        for (uint32_t i : local) text += " " + std::to_string(base + i + 1);
+        text += "\n";
+    }
     void object(const std::string& name, uint32_t material, bool smooth) {
         text +=
             "o " + name + "\nusemtl material_" + std::to_string(material + 1) + "\ns " + (smooth ? "1" : "off") + "\n";
@@ -84,8 +90,6 @@ std::string mtl_material(const MaterialDesc& m, size_t index) {
 }  // namespace
 
 ObjText scene_to_obj(const SceneDesc& scene, const std::string& mtl_file_name, int sphere_segments) {
-    const int segments = std::max(sphere_segments, 3);
-    const int rings = std::max(segments / 2, 2);
     ObjText out;
     ObjWriter w;
     w.text = "# " + (scene.path.empty() ? std::string("scene") : scene.path) + ", exported by rtconvert\n";
@@ -103,13 +107,12 @@ ObjText scene_to_obj(const SceneDesc& scene, const std::string& mtl_file_name, i
     Bounds b;
     for (const MeshDesc& m : scene.meshes)
         for (const Vec3& p : m.positions) b.add(p);
-    for (const SphereDesc& s : scene.spheres) {
-        b.add(s.center - Vec3{s.radius, s.radius, s.radius});
-        b.add(s.center + Vec3{s.radius, s.radius, s.radius});
-    }
+    for_each_shape([&](auto k) {
+        using S = decltype(k);
+        for (const typename S::Desc& e : scene.all<S>()) S::extent(e, [&b](Vec3 p) { b.add(p); });
+    });
     for (const CameraDesc& c : scene.cameras) b.add(c.position);
     for (const PointLightDesc& l : scene.point_lights) b.add(l.position);
-    for (const PlaneDesc& p : scene.planes) b.add(p.point);
     const Vec3 center = b.empty() ? Vec3{0, 0, 0} : (b.lo + b.hi) * Real(0.5);
     const Real extent = b.empty() ? Real(1) : std::max(length(b.hi - b.lo), Real(1));
 
@@ -122,46 +125,19 @@ ObjText scene_to_obj(const SceneDesc& scene, const std::string& mtl_file_name, i
             w.face({base + m.indices[t] + 1, base + m.indices[t + 1] + 1, base + m.indices[t + 2] + 1});
     }
 
-    const Real pi = kPi;
-    for (size_t i = 0; i < scene.spheres.size(); ++i) {
-        const SphereDesc& s = scene.spheres[i];
-        w.object("sphere_" + std::to_string(i + 1), s.material, true);
-        // Rings of constant polar angle from +y; quads (a b c d) run along the ring,
-        // then down: counter-clockwise seen from outside.
-        const size_t north = w.vertex(s.center + Vec3{0, s.radius, 0});
-        const size_t first = w.vertices + 1;
-        for (int r = 1; r < rings; ++r) {
-            const Real theta = pi * Real(r) / Real(rings);
-            for (int k = 0; k < segments; ++k) {
-                const Real phi = 2 * pi * Real(k) / Real(segments);
-                w.vertex(s.center +
-                         Vec3{std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)} *
-                             s.radius);
-            }
+    // The other kinds (rt/shapes/shapes.h) as their polygons.
+    const ExportFrame frame{sphere_segments, center, extent};
+    for_each_shape([&](auto k) {
+        using S = decltype(k);
+        const std::vector<typename S::Desc>& list = scene.all<S>();
+        for (size_t i = 0; i < list.size(); ++i) {
+            const Polygons poly = S::polygons(list[i], frame);
+            w.object(std::string(S::kNoun) + "_" + std::to_string(i + 1), list[i].material, poly.smooth);
+            const size_t base = w.vertices;
+            for (const Vec3& v : poly.vertices) w.vertex(v);
+            for (const std::vector<uint32_t>& f : poly.faces) w.face(f, base);
         }
-        const size_t south = w.vertex(s.center - Vec3{0, s.radius, 0});
-        auto at = [&](int r, int k) { return first + size_t(r - 1) * size_t(segments) + size_t(k % segments); };
-        for (int k = 0; k < segments; ++k) w.face({north, at(1, k + 1), at(1, k)});
-        for (int r = 1; r + 1 < rings; ++r)
-            for (int k = 0; k < segments; ++k) w.face({at(r, k), at(r, k + 1), at(r + 1, k + 1), at(r + 1, k)});
-        for (int k = 0; k < segments; ++k) w.face({at(rings - 1, k), at(rings - 1, k + 1), south});
-    }
-
-    for (size_t i = 0; i < scene.planes.size(); ++i) {
-        const PlaneDesc& p = scene.planes[i];
-        w.object("plane_" + std::to_string(i + 1), p.material, false);
-        const Vec3 n = normalize(p.normal);
-        const Vec3 helper = std::fabs(n.x) < Real(0.9) ? Vec3{1, 0, 0} : Vec3{0, 1, 0};
-        const Vec3 u = normalize(cross(n, helper));
-        const Vec3 v = cross(n, u);  // u x v = n: (-u-v, u-v, u+v, -u+v) is counter-clockwise about n
-        const Vec3 c = center - n * dot(center - p.point, n);
-        const Real h = 5 * extent;
-        const size_t a = w.vertex(c - u * h - v * h);
-        w.vertex(c + u * h - v * h);
-        w.vertex(c + u * h + v * h);
-        w.vertex(c - u * h + v * h);
-        w.face({a, a + 1, a + 2, a + 3});
-    }
+    });
     out.obj = std::move(w.text);
 
     out.mtl =

@@ -250,7 +250,10 @@ Scene build(SceneDesc& d, const BvhBuildOptions& bvh) {
     g.triangles.reserve(ntri);
     // One allocation for the BVH's primitive boxes (boxes[id], triangles first) and
     // afterwards the leaf-order vertices that may take their place (copy_leaf_vertices).
-    const size_t nboxes = ntri + d.spheres.size();
+    size_t nboxes = ntri;
+    for_each_shape([&](auto k) {
+        if constexpr (decltype(k)::kBounded) nboxes += d.all<decltype(k)>().size();
+    });
     ReusableStorage storage(std::max(nboxes * sizeof(BuildBox), LeafVertices::coordinates_for(nboxes) * sizeof(float)));
     BuildBox* const boxes = storage.emplace<BuildBox>(nboxes);
     for (MeshDesc& m : d.meshes) {
@@ -259,14 +262,13 @@ Scene build(SceneDesc& d, const BvhBuildOptions& bvh) {
         std::vector<Vec3>().swap(m.positions);
         std::vector<uint32_t>().swap(m.indices);
     }
-    for (const SphereDesc& sp : d.spheres) {
-        g.spheres.push_back({sp.center, sp.radius, sp.material});
-        s.names.spheres.push_back(sp.id);
-    }
-    for (const PlaneDesc& p : d.planes) {
-        g.planes.push_back({p.point, normalize(p.normal), p.material});
-        s.names.planes.push_back(p.id);
-    }
+    for_each_shape([&](auto k) {
+        using S = decltype(k);
+        for (const typename S::Desc& e : d.all<S>()) {
+            g.all<S>().push_back(S::build(e));
+            s.names.ids[size_t(kind_of<S>)].push_back(e.id);
+        }
+    });
 
     // Boxes of the bounded shapes after the triangles (add_mesh made theirs).
     add_boxes(g, g.count(ShapeKind::Triangle), boxes);

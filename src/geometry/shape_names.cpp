@@ -1,14 +1,13 @@
-// ShapeNames::name: a primitive as the scene file names it (rt/geometry/scene.h).
+// ShapeNames::name: a primitive as the scene file names it (rt/geometry/shape_names.h).
 #include <string>
 
-#include "rt/geometry/scene.h"
+#include "rt/geometry/shape_names.h"
 
 namespace rt {
 
 std::string ShapeNames::name(ShapeRef s) const {
     const std::string index = std::to_string(s.index);
-    switch (s.kind) {
-        case ShapeKind::Triangle: {
+    if (s.kind == ShapeKind::Triangle) {
             // The last mesh starting at or before the triangle (meshes left empty by
             // skipped faces share their first_triangle with the next one).
             const Mesh* found = last_starting_at(meshes, s.index, &Mesh::first_triangle);
@@ -21,13 +20,12 @@ std::string ShapeNames::name(ShapeRef s) const {
                 ++face;
             }
             return "Mesh " + m.id + ", face " + std::to_string(face);
-        }
-        case ShapeKind::Sphere:
-            return s.index < spheres.size() ? "Sphere " + spheres[s.index] : "sphere #" + index;
-        case ShapeKind::Plane:
-            return s.index < planes.size() ? "Plane " + planes[s.index] : "plane #" + index;
     }
-    return "?";
+    const std::vector<std::string>& named = ids[size_t(s.kind)];
+    return visit_shape<std::string>(s.kind, [&](auto k) {
+        using S = decltype(k);
+        return s.index < named.size() ? std::string(S::kKey) + " " + named[s.index] : S::kNoun + (" #" + index);
+    });
 }
 
 }  // namespace rt

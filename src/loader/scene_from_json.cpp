@@ -133,15 +133,19 @@ private:
 
     // Records keys the renderer does not use, each with the valid key it is a near miss
     // of, if any; `generic` is the path without array indices.
-    void check_keys(const json& obj, const std::string& /*path*/, const std::string& generic,
+    void check_keys(const json& obj, const std::string& path, const std::string& generic,
                     std::initializer_list<const char*> known) {
+        check_keys<std::initializer_list<const char*>>(obj, path, generic, known);
+    }
+    template <class Keys>
+    void check_keys(const json& obj, const std::string& /*path*/, const std::string& generic, const Keys& known) {
         for (auto it = obj.begin(); it != obj.end(); ++it) {
             bool ok = false;
             for (const char* k : known) ok = ok || it.key() == k;
             if (ok) continue;
             Unknown& u = unknown_[generic + "/" + it.key()];
             if (u.count++ == 0)
-                u.suggestion = near_miss(it.key(), std::vector<std::string>(known.begin(), known.end()));
+                u.suggestion = near_miss(it.key(), std::vector<std::string>(std::begin(known), std::end(known)));
         }
     }
 
@@ -462,12 +466,29 @@ private:
         }
     }
 
+    // What a shape's read() (rt/shapes/shape.h) asks for, by key, with the loader's
+    // checks and messages.
+    struct FieldReader {
+        const Loader& l;
+        const json& obj;
+        const std::string& path;
+        Vec3 vertex(const char* key) const { return l.vertex_ref(obj, path, key); }
+        Real positive(const char* key) const {
+            return l.positive(l.require(obj, path, key), path + "/" + key);
+        }
+        Vec3 nonzero_vec3(const char* key) const {
+            return l.nonzero_vec3(l.require(obj, path, key), path + "/" + key);
+        }
+    };
+
     void load_objects(const json& scene, const std::string& sp) {
         const json* os = find(scene, "Objects");
         const std::string path = sp + "/Objects";
         if (!os || os->is_null()) return;
         expect_object(*os, path);
-        check_keys(*os, path, path, {"Mesh", "Triangle", "Sphere", "Plane"});
+        std::vector<const char*> kinds = {"Mesh", "Triangle"};
+        for_each_shape([&](auto k) { kinds.push_back(decltype(k)::kKey); });
+        check_keys(*os, path, path, kinds);
 
         size_t meshes = 0, triangles = 0;  // positions among their kind, for object_id
         for_each_item(*os, path, "Mesh", [&](const json& m, const std::string& mp) {
@@ -536,24 +557,19 @@ private:
             out_.meshes.push_back(std::move(mesh));
         });
 
-        for_each_item(*os, path, "Sphere", [&](const json& s, const std::string& spp) {
-            check_keys(s, spp, path + "/Sphere", {"_id", "Material", "Center", "Radius"});
-            SphereDesc d;
-            d.material = material_ref(s, spp);
-            d.center = vertex_ref(s, spp, "Center");
-            d.radius = positive(require(s, spp, "Radius"), spp + "/Radius");
-            d.id = object_id(s, out_.spheres.size() + 1);
-            out_.spheres.push_back(d);
-        });
-
-        for_each_item(*os, path, "Plane", [&](const json& p, const std::string& pp) {
-            check_keys(p, pp, path + "/Plane", {"_id", "Material", "Point", "Normal"});
-            PlaneDesc d;
-            d.material = material_ref(p, pp);
-            d.point = vertex_ref(p, pp, "Point");
-            d.normal = nonzero_vec3(require(p, pp, "Normal"), pp + "/Normal");
-            d.id = object_id(p, out_.planes.size() + 1);
-            out_.planes.push_back(d);
+        // The other kinds (rt/shapes/shapes.h), each by its own reader.
+        for_each_shape([&](auto k) {
+            using S = decltype(k);
+            std::vector<typename S::Desc>& list = out_.all<S>();
+            for_each_item(*os, path, S::kKey, [&](const json& e, const std::string& ep) {
+                check_keys(e, ep, path + "/" + S::kKey, S::kKeys);
+                typename S::Desc d;
+                d.material = material_ref(e, ep);
+                FieldReader r{*this, e, ep};
+                S::read(r, d);
+                d.id = object_id(e, list.size() + 1);
+                list.push_back(std::move(d));
+            });
         });
     }
 };

@@ -9,6 +9,7 @@
 #include <thread>
 #include <vector>
 
+#include "rt/bvh/traverse.h"
 #include "rt/render/render.h"
 #include "rt/shading/shading.h"
 #include "rt/core/threads.h"

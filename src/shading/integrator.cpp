@@ -3,6 +3,7 @@
 #include <cmath>
 #include <limits>
 
+#include "rt/bvh/traverse.h"
 #include "rt/geometry/intersect.h"
 #include "rt/geometry/scene.h"
 #include "rt/shading/shading.h"

@@ -129,7 +129,7 @@ int main(int argc, char** argv) {
         std::printf(
             "%s: %zu primitives, medians of %d: boxes %.3f s, build %.3f s wall, %.3f s cpu (first %.3f s); "
             "%zu nodes, SAH cost %.4f; fastest %.3f s wall, %.3f s cpu\n",
-            path.c_str(), s.geometry.triangles.size() + s.geometry.spheres.size(), runs, median(box_wall), median(wall),
+            path.c_str(), size_t(s.geometry.bounded_count()), runs, median(box_wall), median(wall),
             median(cpu), wall[0], nodes, cost, *std::min_element(wall.begin(), wall.end()),
             *std::min_element(cpu.begin(), cpu.end()));
         const size_t slots = nodes * rt::BvhNode::kWidth;

@@ -9,6 +9,7 @@
 
 #include "rt/bvh/bvh.h"
 #include "rt/render/render.h"
+#include "rt/shapes/shapes.h"
 
 namespace rt {
 
@@ -46,7 +47,8 @@ struct SceneTimes {
 
 // What a built scene holds, as the per-image summary line and --stats report it.
 struct SceneFigures {
-    size_t triangles = 0, spheres = 0, planes = 0, lights = 0;
+    size_t shapes[kShapeKindCount] = {};  // primitives by ShapeKind (rt/shapes/shapes.h)
+    size_t lights = 0;
     size_t degenerate = 0;  // triangles skipped at build time
     size_t bvh_nodes = 0;
     int bvh_depth = 0;

@@ -1,5 +1,5 @@
-// Ray/primitive intersection: the watertight triangle test, spheres and planes.
-// The scene queries built on them, closest_hit and any_hit, are in scene.h.
+// The watertight ray/triangle test. The other kinds' tests are in their own files
+// (rt/shapes/); the scene queries built on them are in rt/bvh/traverse.h.
 #pragma once
 #include <cmath>
 #include <cstdint>
@@ -142,41 +142,6 @@ template <bool kCull = false, bool kShadow = false>
 inline bool intersect_triangle(const RayPre& p, Vec3 a, Vec3 b, Vec3 c, Real tmin, Real tmax, Real& t, Real w[3]) {
     const TriEdges e = triangle_edges(p, a, b, c);
     return inside_edges<kCull>(e.u, e.v, e.w) && triangle_hit<kShadow>(p, e, tmin, tmax, t, w);
-}
-
-// Nearest intersection of a unit-direction ray with a sphere in (tmin, tmax).
-// The discriminant is computed as r^2 - |oc - (oc.d) d|^2, which stays accurate
-// for small spheres far away (Haines et al., Ray Tracing Gems ch. 7).
-inline bool intersect_sphere(const Ray& r, Vec3 centre, Real radius, Real tmin, Real tmax, Real& t) {
-    const Vec3 oc = r.org - centre;
-    const Real b = dot(oc, r.dir);
-    const Vec3 perp = oc - r.dir * b;
-    const Real disc = radius * radius - dot(perp, perp);
-    if (disc < 0) return false;
-    const Real c = dot(oc, oc) - radius * radius;
-    // Stable roots: q = -b - sign(b) sqrt(disc); t0 = c / q, t1 = q.
-    const Real q = -b - std::copysign(std::sqrt(disc), b);
-    Real t0 = q, t1 = (q != 0) ? c / q : q;
-    if (t0 > t1) std::swap(t0, t1);
-    if (t0 > tmin && t0 < tmax) {
-        t = t0;
-        return true;
-    }
-    if (t1 > tmin && t1 < tmax) {
-        t = t1;
-        return true;
-    }
-    return false;
-}
-
-// Infinite plane through `point` with unit `normal`; both sides are hit.
-inline bool intersect_plane(const Ray& r, Vec3 point, Vec3 normal, Real tmin, Real tmax, Real& t) {
-    const Real denom = dot(r.dir, normal);
-    if (denom == 0) return false;
-    const Real tt = dot(point - r.org, normal) / denom;
-    if (!(tt > tmin && tt < tmax)) return false;
-    t = tt;
-    return true;
 }
 
 }  // namespace rt

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "rt/core/math.h"
+#include "rt/shapes/shapes.h"
 
 namespace rt {
 
@@ -67,19 +68,6 @@ struct MeshDesc {
     std::string id;
 };
 
-struct SphereDesc {
-    uint32_t material = 0;
-    Vec3 center;
-    Real radius = 1;
-    std::string id;  // as MeshDesc::id
-};
-
-struct PlaneDesc {
-    uint32_t material = 0;
-    Vec3 point, normal;
-    std::string id;  // as MeshDesc::id
-};
-
 struct SceneDesc {
     std::string path;  // the scene file, for messages
     Vec3 background;   // BackgroundColor, default 0 0 0
@@ -91,10 +79,19 @@ struct SceneDesc {
     std::vector<PointLightDesc> point_lights;
     std::vector<MaterialDesc> materials;
     std::vector<MeshDesc> meshes;  // Objects/Triangle entries become one-triangle flat meshes
-    std::vector<SphereDesc> spheres;
-    std::vector<PlaneDesc> planes;
+    ShapeDescVectors shapes;       // the other kinds (rt/shapes/shapes.h): all<Sphere>(), ...
     std::vector<std::string> warnings;  // unknown keys, skipped degenerate triangles, ...
     double ply_seconds = 0;             // spent reading PLY files, for --stats
+
+    // The entries of kind S (rt/shapes/shapes.h), in file order.
+    template <class S>
+    std::vector<typename S::Desc>& all() {
+        return std::get<IndexIn<S, Shapes>::value>(shapes);
+    }
+    template <class S>
+    const std::vector<typename S::Desc>& all() const {
+        return std::get<IndexIn<S, Shapes>::value>(shapes);
+    }
 };
 
 }  // namespace rt

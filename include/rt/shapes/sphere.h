@@ -1,0 +1,107 @@
+// A sphere (spec 3, "Sphere"): Objects/Sphere, its Center a vertex id, its Radius > 0.
+#pragma once
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "rt/bvh/bvh.h"
+#include "rt/shapes/shape.h"
+
+namespace rt {
+
+struct SphereDesc : ShapeDescBase {
+    Vec3 center;
+    Real radius = 1;
+};
+
+// Nearest intersection of a unit-direction ray with a sphere in (tmin, tmax).
+// The discriminant is computed as r^2 - |oc - (oc.d) d|^2, which stays accurate
+// for small spheres far away (Haines et al., Ray Tracing Gems ch. 7).
+inline bool intersect_sphere(const Ray& r, Vec3 centre, Real radius, Real tmin, Real tmax, Real& t) {
+    const Vec3 oc = r.org - centre;
+    const Real b = dot(oc, r.dir);
+    const Vec3 perp = oc - r.dir * b;
+    const Real disc = radius * radius - dot(perp, perp);
+    if (disc < 0) return false;
+    const Real c = dot(oc, oc) - radius * radius;
+    // Stable roots: q = -b - sign(b) sqrt(disc); t0 = c / q, t1 = q.
+    const Real q = -b - std::copysign(std::sqrt(disc), b);
+    Real t0 = q, t1 = (q != 0) ? c / q : q;
+    if (t0 > t1) std::swap(t0, t1);
+    if (t0 > tmin && t0 < tmax) {
+        t = t0;
+        return true;
+    }
+    if (t1 > tmin && t1 < tmax) {
+        t = t1;
+        return true;
+    }
+    return false;
+}
+
+struct Sphere {
+    using Desc = SphereDesc;
+    static constexpr const char* kKey = "Sphere";
+    static constexpr const char* kKeys[] = {"_id", "Material", "Center", "Radius"};
+    static constexpr const char* kNoun = "sphere";
+    static constexpr const char* kNouns = "spheres";
+    static constexpr bool kBounded = true;
+
+    Vec3 center;
+    Real radius;
+    uint32_t material;
+
+    // `r` reads this entry's fields by key (the loader's checks and messages).
+    template <class Reader>
+    static void read(Reader& r, Desc& d) {
+        d.center = r.vertex("Center");
+        d.radius = r.positive("Radius");
+    }
+    static Sphere build(const Desc& d) { return {d.center, d.radius, d.material}; }
+
+    Box bounds() const {
+        const Vec3 r{radius, radius, radius};
+        return Box::around(center - r, center + r);
+    }
+    bool intersect(const Ray& ray, Real tmin, Real tmax, Real& t) const {
+        return intersect_sphere(ray, center, radius, tmin, tmax, t);
+    }
+    Surface surface(Vec3 p) const {
+        const Vec3 n = (p - center) / radius;
+        return {n, n, material};
+    }
+
+    template <class Add>
+    static void extent(const Desc& d, Add&& add) {
+        add(d.center - Vec3{d.radius, d.radius, d.radius});
+        add(d.center + Vec3{d.radius, d.radius, d.radius});
+    }
+    // A UV sphere: rings of constant polar angle from +y; quads (a b c d) run along the
+    // ring, then down: counter-clockwise seen from outside.
+    static Polygons polygons(const Desc& d, const ExportFrame& f) {
+        const int segments = std::max(f.segments, 3);
+        const int rings = std::max(segments / 2, 2);
+        Polygons out;
+        out.smooth = true;
+        out.vertices.push_back(d.center + Vec3{0, d.radius, 0});
+        for (int r = 1; r < rings; ++r) {
+            const Real theta = kPi * Real(r) / Real(rings);
+            for (int k = 0; k < segments; ++k) {
+                const Real phi = 2 * kPi * Real(k) / Real(segments);
+                out.vertices.push_back(
+                    d.center +
+                    Vec3{std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi)} * d.radius);
+            }
+        }
+        const uint32_t south = static_cast<uint32_t>(out.vertices.size());
+        out.vertices.push_back(d.center - Vec3{0, d.radius, 0});
+        auto at = [&](int r, int k) { return uint32_t(1 + (r - 1) * segments + k % segments); };
+        for (int k = 0; k < segments; ++k) out.faces.push_back({0, at(1, k + 1), at(1, k)});
+        for (int r = 1; r + 1 < rings; ++r)
+            for (int k = 0; k < segments; ++k) out.faces.push_back({at(r, k), at(r, k + 1), at(r + 1, k + 1), at(r + 1, k)});
+        for (int k = 0; k < segments; ++k) out.faces.push_back({at(rings - 1, k), at(rings - 1, k + 1), south});
+        return out;
+    }
+};
+
+}  // namespace rt
