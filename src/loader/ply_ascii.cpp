@@ -6,6 +6,7 @@
 #include <cmath>
 #include <string>
 #include <string_view>
+#include <type_traits>
 
 #include "ply_format.h"
 
@@ -34,29 +35,20 @@ public:
         return std::string_view(b, static_cast<size_t>(c.p - b));
     }
 
-    // A whole token as a real number (from_chars does not take a leading '+').
-    double ascii_real(const AsciiCursor& c, std::string_view t, const Element& el, uint64_t rec) const {
+    // A whole token as a number: double for coordinates, int64_t for list counts and
+    // indices (from_chars does not take a leading '+').
+    template <typename T>
+    T ascii_number(const AsciiCursor& c, std::string_view t, const Element& el, uint64_t rec) const {
+        constexpr bool real = std::is_floating_point_v<T>;
         const char* b = t.data();
         const char* e = b + t.size();
         if (b != e && *b == '+') ++b;
-        double v = 0;
+        T v = 0;
         const auto r = std::from_chars(b, e, v);
-        if (r.ec == std::errc::result_out_of_range && r.ptr == e)
+        if (real && r.ec == std::errc::result_out_of_range && r.ptr == e)
             in_.fail_line(c.line, "number " + quoted(t) + " out of range in " + record_text(el, rec));
         if (r.ec != std::errc() || r.ptr != e)
-            in_.fail_line(c.line, "bad number " + quoted(t) + " in " + record_text(el, rec));
-        return v;
-    }
-
-    // A whole token as an integer (list counts and indices).
-    int64_t ascii_int(const AsciiCursor& c, std::string_view t, const Element& el, uint64_t rec) const {
-        const char* b = t.data();
-        const char* e = b + t.size();
-        if (b != e && *b == '+') ++b;
-        int64_t v = 0;
-        const auto r = std::from_chars(b, e, v);
-        if (r.ec != std::errc() || r.ptr != e)
-            in_.fail_line(c.line, "bad integer " + quoted(t) + " in " + record_text(el, rec));
+            in_.fail_line(c.line, (real ? "bad number " : "bad integer ") + quoted(t) + " in " + record_text(el, rec));
         return v;
     }
 
@@ -75,14 +67,14 @@ public:
                     if (!pr.is_list) {
                         const std::string_view t = token(c, el, i);
                         if (pr.role == Role::Skip) continue;
-                        const double v = ascii_real(c, t, el, i);
+                        const double v = ascii_number<double>(c, t, el, i);
                         if (!std::isfinite(v))
                             in_.fail_line(c.line, "non-finite coordinate " + quoted(t) + " in " + record_text(el, i));
                         const int a = static_cast<int>(pr.role) - static_cast<int>(Role::X);
                         mesh.positions[static_cast<size_t>(i)][a] = static_cast<Real>(v);
                         continue;
                     }
-                    const int64_t n = ascii_int(c, token(c, el, i), el, i);
+                    const int64_t n = ascii_number<int64_t>(c, token(c, el, i), el, i);
                     if (n < 0)
                         in_.fail_line(c.line, "negative list count " + std::to_string(n) + " in " + record_text(el, i));
                     if (pr.role != Role::Indices) {
@@ -95,7 +87,7 @@ public:
                                                   record_text(el, i));
                     Fan fan;
                     for (int64_t k = 0; k < n; ++k) {
-                        const int64_t v = ascii_int(c, token(c, el, i), el, i);
+                        const int64_t v = ascii_number<int64_t>(c, token(c, el, i), el, i);
                         if (static_cast<uint64_t>(v) >= h_.vertex_count)
                             in_.fail_line(c.line, bad_index_text(v, h_.vertex_count) + " in " + record_text(el, i));
                         fan.add(k, static_cast<uint32_t>(v), tris);
