@@ -8,63 +8,24 @@
 // test goes: triangles in blocks of BvhBuildOptions::block, other shapes one by
 // one). Large subtrees are built on their own threads; nodes come from one array
 // through an atomic counter.
-#include <sys/mman.h>
-#include <unistd.h>
+//
+// This file is the SAH builder and Bvh::build. Beside it: box8.h, the box that
+// binning and partitioning keep in a register; bvh_node.h, writing a node's slots;
+// bvh_collapse.cpp, the collapse of each built node into fuller nodes;
+// node_array.cpp, the node memory.
 #include <algorithm>
 #include <atomic>
 #include <cmath>
-#include <cstdlib>
-#include <new>
 #include <thread>
-#include <vector>
 
-#if defined(__AVX__)
-#include <immintrin.h>
-#endif
-
+#include "box8.h"
+#include "bvh_collapse.h"
+#include "bvh_node.h"
 #include "rt/bvh/bvh.h"
-#include "rt/io/memory.h"
 #include "rt/core/threads.h"
 
 namespace rt {
-
-// The node array of a large scene spans hundreds of megabytes that rays visit
-// at random: with 4 KiB pages nearly every node load below the top levels is
-// also a TLB miss. 2 MiB pages (transparent huge pages, where the kernel grants
-// them on request) cover it with few TLB entries: knot_16m_glass renders 9%
-// faster, its build is no slower. (Asking the same for the triangles, boxes and
-// primitive order too made loading slower, 1-2 s more system time, and rays no
-// faster.)
-void NodeArray::allocate(size_t capacity) {
-    data_.reset();
-    size_ = 0;
-    const size_t bytes = capacity * sizeof(BvhNode);
-    void* p = allocate_bytes(bytes, alignof(BvhNode));
-    if (!p) throw std::bad_alloc();
-    data_.reset(static_cast<BvhNode*>(p));
-    bytes_ = bytes;
-}
-
-void NodeArray::release_unused() {
-    const uintptr_t page = static_cast<uintptr_t>(sysconf(_SC_PAGESIZE));
-    const uintptr_t start = reinterpret_cast<uintptr_t>(data_.get());
-    // Only pages wholly inside the allocation: a partial page may hold the allocator's data.
-    const uintptr_t from = (start + size_ * sizeof(BvhNode) + page - 1) / page * page;
-    const uintptr_t to = (start + bytes_) / page * page;
-    if (to > from) madvise(reinterpret_cast<void*>(from), to - from, MADV_DONTNEED);
-}
-
-void NodeArray::Free::operator()(BvhNode* p) const { std::free(p); }
-
-float round_down_to_float(Real x) {
-    const float f = static_cast<float>(x);
-    return static_cast<Real>(f) > x ? std::nextafter(f, -HUGE_VALF) : f;
-}
-float round_up_to_float(Real x) {
-    const float f = static_cast<float>(x);
-    return static_cast<Real>(f) < x ? std::nextafter(f, HUGE_VALF) : f;
-}
-
+namespace bvh_builder {
 namespace {
 
 // Most bins per axis (BvhBuildOptions::bins, 16 by default, for large ranges).
@@ -80,75 +41,6 @@ constexpr int kSahDepthLimit = 48;             // beyond it, object-median split
 constexpr uint32_t kParallelMin = 1u << 15;    // smallest subtree worth a thread
 constexpr uint32_t kParallelSplit = 1u << 20;  // smallest range whose split is shared by two threads
 
-// A box as eight floats (lo0, lo1, lo2, 0, -hi0, -hi1, -hi2, 0): one min
-// extends both ends, so binning and partitioning need one instruction per box
-// with AVX. The empty box is all +inf. A type of its own because it lives in a
-// register: binning and partitioning (most of the build) load every BuildBox
-// into one and extend one per bin and side; a Box (lo, hi) would take a min and
-// a max and twice the loads for each. Range bounds and node slots are Boxes
-// (to_box).
-#if defined(__AVX__)
-using Box8 = __m256;
-inline Box8 empty8() { return _mm256_set1_ps(HUGE_VALF); }
-inline Box8 min8(Box8 a, Box8 b) { return _mm256_min_ps(a, b); }
-// Lanes 3 and 7 of a BuildBox (id, padding) are zeroed so that no arithmetic
-// ever sees their bits (small ids are denormal floats).
-inline Box8 load8(const BuildBox& b) {
-    const __m256 sign = _mm256_setr_ps(0, 0, 0, 0, -0.0f, -0.0f, -0.0f, -0.0f);
-    return _mm256_blend_ps(_mm256_xor_ps(_mm256_loadu_ps(b.lo), sign), _mm256_setzero_ps(), 0x88);
-}
-// lo + hi (the doubled centroid, binning's measure) in lanes 0..2.
-inline __m128 centre4(Box8 v) { return _mm_sub_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1)); }
-// The box of the point lo + hi.
-inline Box8 centroid8(Box8 v) {
-    const __m128 c = centre4(v);
-    return _mm256_insertf128_ps(_mm256_castps128_ps256(c), _mm_xor_ps(c, _mm_set1_ps(-0.0f)), 1);
-}
-// Box::area of the box, bit for bit: lo - hi = -(hi - lo) exactly, and the
-// products and their order of summation are Box::area's.
-inline float area8(Box8 v) {
-    const __m128 e = _mm_add_ps(_mm256_castps256_ps128(v), _mm256_extractf128_ps(v, 1));  // -(extent)
-    if (_mm_cvtss_f32(e) > 0) return 0;                                                   // empty
-    const __m128 p = _mm_mul_ps(e, _mm_shuffle_ps(e, e, _MM_SHUFFLE(3, 0, 2, 1)));        // xy, yz, zx
-    const __m128 s = _mm_add_ss(_mm_add_ss(p, _mm_shuffle_ps(p, p, 1)), _mm_shuffle_ps(p, p, 2));
-    return 2 * _mm_cvtss_f32(s);
-}
-inline void store8(Box8 v, float f[8]) { _mm256_storeu_ps(f, v); }
-#else
-struct Box8 {
-    float f[8];
-};
-inline Box8 empty8() {
-    Box8 b;
-    for (float& x : b.f) x = HUGE_VALF;
-    return b;
-}
-inline Box8 min8(Box8 a, const Box8& b) {
-    for (int i = 0; i < 8; ++i) a.f[i] = std::min(a.f[i], b.f[i]);
-    return a;
-}
-inline Box8 load8(const BuildBox& b) { return {{b.lo[0], b.lo[1], b.lo[2], 0, -b.hi[0], -b.hi[1], -b.hi[2], 0}}; }
-inline Box8 centroid8(const Box8& v) {
-    const float c[3] = {v.f[0] - v.f[4], v.f[1] - v.f[5], v.f[2] - v.f[6]};
-    return {{c[0], c[1], c[2], 0, -c[0], -c[1], -c[2], 0}};
-}
-inline float area8(const Box8& v) {
-    const float x = -(v.f[0] + v.f[4]), y = -(v.f[1] + v.f[5]), z = -(v.f[2] + v.f[6]);
-    return x < 0 ? 0 : 2 * (x * y + y * z + z * x);
-}
-inline void store8(const Box8& v, float f[8]) { std::copy(v.f, v.f + 8, f); }
-#endif
-inline Box to_box(Box8 v) {
-    float f[8];
-    store8(v, f);
-    Box b;
-    for (int a = 0; a < 3; ++a) {
-        b.lo[a] = f[a];
-        b.hi[a] = -f[4 + a];
-    }
-    return b;
-}
-
 // Centroid doubled (lo + hi): binning only needs a consistent measure.
 inline float centre2(const BuildBox& b, int axis) { return b.lo[axis] + b.hi[axis]; }
 
@@ -160,181 +52,6 @@ struct Range {
     uint32_t alone = 0;  // how many of its primitives are BuildBox::alone
     uint32_t count() const { return end - begin; }
 };
-
-void set_slot(BvhNode& n, int slot, const Box& b) {
-    for (int a = 0; a < 3; ++a) {
-        n.lo[a][slot] = b.lo[a];
-        n.hi[a][slot] = b.hi[a];
-    }
-}
-
-// Empty slots: boxes that no ray enters, no children.
-void clear_node(BvhNode& node) {
-    for (int i = 0; i < BvhNode::kWidth; ++i) {
-        set_slot(node, i, Box());
-        node.child[i] = BvhNode::kEmpty;
-        node.count[i] = 0;
-    }
-    for (uint8_t& p : node.pad) p = 0;
-}
-
-// Collapsing: fewer, fuller nodes. Splitting top-down leaves most nodes at the
-// bottom with a few leaves each (a range just over max_leaf becomes a node of two
-// leaves): at 16M triangles nearly half the child slots were empty (docs/speed.md).
-// So once a node's subtrees are built, the node
-//  1. merges two child nodes that hold only leaves into one when their leaves fit
-//     one node and the box around both has less surface area than the two boxes
-//     (SAH: fewer expected node visits), the pair with the largest saving first;
-//  2. takes in a child node whose slots fit in its free ones (one node visit
-//     fewer and no box test more: a node tests all its slots at once), the
-//     largest box first.
-// Leaves, their boxes and primitives stay as built, and hits do not depend on the
-// tree's shape (closest_hit breaks ties by primitive id). Removed nodes are marked
-// (first slot empty) and squeezed out at the end (finish_nodes).
-
-// A node's shape, all its parent's collapse needs to rule both steps out: its
-// slots in use, plus kOnlyLeaves when every one is a leaf.
-constexpr uint8_t kOnlyLeaves = 0x80;
-uint8_t shape_of(int slots, bool only_leaves) { return static_cast<uint8_t>(slots | (only_leaves ? kOnlyLeaves : 0)); }
-uint8_t shape_of(const BvhNode& n) {
-    int k = 0;
-    bool leaves = true;
-    for (; k < BvhNode::kWidth && n.child[k] != BvhNode::kEmpty; ++k) leaves = leaves && n.child[k] < 0;
-    return shape_of(k, leaves);
-}
-
-// A child slot as the collapse handles it.
-struct Slot {
-    Box box;
-    float area = 0;
-    int32_t child = BvhNode::kEmpty;
-    uint16_t count = 0;
-    uint8_t shape = 0;  // a child node's shape_of
-    bool only_leaves() const { return child >= 0 && (shape & kOnlyLeaves) != 0; }
-    int slots() const { return shape & ~kOnlyLeaves; }
-};
-
-// The slots of `n` in use; their child nodes' shapes are `shapes` when given,
-// else read from the child nodes.
-int load_slots(const NodeArray& nodes, const BvhNode& n, Slot s[BvhNode::kWidth], const uint8_t* shapes) {
-    int k = 0;
-    for (; k < BvhNode::kWidth && n.child[k] != BvhNode::kEmpty; ++k) {
-        for (int a = 0; a < 3; ++a) {
-            s[k].box.lo[a] = n.lo[a][k];
-            s[k].box.hi[a] = n.hi[a][k];
-        }
-        s[k].area = s[k].box.area();
-        s[k].child = n.child[k];
-        s[k].count = n.count[k];
-        s[k].shape = n.child[k] < 0 ? 0 : shapes ? shapes[k] : shape_of(nodes[n.child[k]]);
-    }
-    return k;
-}
-
-void store_slots(BvhNode& n, const Slot s[BvhNode::kWidth], int k) {
-    clear_node(n);
-    for (int i = 0; i < k; ++i) {
-        set_slot(n, i, s[i].box);
-        n.child[i] = s[i].child;
-        n.count[i] = s[i].count;
-    }
-}
-
-void mark_removed(BvhNode& n) { n.child[0] = BvhNode::kEmpty; }
-bool is_removed(const BvhNode& n) { return n.child[0] == BvhNode::kEmpty; }
-
-// Steps 1 and 2 for `node`, whose k slots are in use and whose subtrees are built
-// and collapsed (`shapes`: the child nodes' shape_of, 0 for a leaf). Returns the
-// node's shape_of.
-uint8_t collapse_node(NodeArray& nodes, BvhNode& node, int k, const uint8_t shapes[BvhNode::kWidth]) {
-    constexpr int kWidth = BvhNode::kWidth;
-    {  // Most nodes hold only leaves: rule both steps out without reading a node.
-        int smallest = kWidth + 1, smallest_leafy = kWidth + 1;
-        bool pair = false, leaves = true;
-        for (int i = 0; i < k; ++i) {
-            if (shapes[i] == 0) continue;  // a leaf
-            leaves = false;
-            const int slots = shapes[i] & ~kOnlyLeaves;
-            smallest = std::min(smallest, slots);
-            if (!(shapes[i] & kOnlyLeaves)) continue;
-            pair = pair || smallest_leafy + slots <= kWidth;
-            smallest_leafy = std::min(smallest_leafy, slots);
-        }
-        if (!pair && k - 1 + smallest > kWidth) return shape_of(k, leaves);
-    }
-    Slot s[kWidth];
-    load_slots(nodes, node, s, shapes);
-    for (;;) {  // 1. merge
-        int best_a = -1, best_b = -1;
-        float best = 0;
-        Box best_box;
-        for (int a = 0; a < k; ++a) {
-            if (!s[a].only_leaves()) continue;
-            for (int b = a + 1; b < k; ++b) {
-                if (!s[b].only_leaves() || s[a].slots() + s[b].slots() > kWidth) continue;
-                Box both = s[a].box;
-                both.extend(s[b].box);
-                const float saving = s[a].area + s[b].area - both.area();
-                if (saving > best) best = saving, best_a = a, best_b = b, best_box = both;
-            }
-        }
-        if (best_a < 0) break;
-        Slot into[kWidth], from[kWidth];
-        const int ka = load_slots(nodes, nodes[s[best_a].child], into, nullptr);
-        const int kb = load_slots(nodes, nodes[s[best_b].child], from, nullptr);
-        std::copy(from, from + kb, into + ka);
-        store_slots(nodes[s[best_a].child], into, ka + kb);
-        mark_removed(nodes[s[best_b].child]);
-        s[best_a].box = best_box;
-        s[best_a].area = best_box.area();
-        s[best_a].shape = shape_of(ka + kb, true);
-        std::copy(s + best_b + 1, s + k, s + best_b);
-        --k;
-    }
-    for (;;) {  // 2. take in
-        int best = -1;
-        for (int i = 0; i < k; ++i)
-            if (s[i].child >= 0 && k - 1 + s[i].slots() <= kWidth && (best < 0 || s[i].area > s[best].area)) best = i;
-        if (best < 0) break;
-        BvhNode& c = nodes[s[best].child];
-        Slot t[kWidth];
-        const int kc = load_slots(nodes, c, t, nullptr);
-        mark_removed(c);
-        s[best] = t[0];
-        std::copy(t + 1, t + kc, s + k);
-        k += kc - 1;
-    }
-    store_slots(node, s, k);
-    return shape_of(node);
-}
-
-// After the build: squeezes out removed nodes (new indices keep the order, and a
-// node's children come after it, so a node only moves down and its children,
-// further on, move after it) and gives back the freed pages. Returns the depth.
-int finish_nodes(NodeArray& nodes) {
-    const size_t n = nodes.size();
-    std::vector<uint32_t> index(n);
-    uint32_t kept = 0;
-    for (size_t i = 0; i < n; ++i) index[i] = is_removed(nodes[i]) ? ~0u : kept++;
-    std::vector<uint8_t> level(kept, 0);
-    level[0] = 1;
-    int depth = 1;
-    for (size_t i = 0; i < n; ++i) {
-        if (index[i] == ~0u) continue;
-        BvhNode& node = nodes[i];
-        const uint32_t to = index[i];
-        depth = std::max(depth, int(level[to]));
-        for (int c = 0; c < BvhNode::kWidth; ++c)
-            if (node.child[c] >= 0) {
-                node.child[c] = static_cast<int32_t>(index[node.child[c]]);
-                level[node.child[c]] = static_cast<uint8_t>(level[to] + 1);
-            }
-        if (to != i) nodes[to] = node;
-    }
-    nodes.set_size(kept);
-    nodes.release_unused();
-    return depth;
-}
 
 struct Builder {
     BuildBox* refs;
@@ -419,9 +136,9 @@ struct Builder {
     // Bins r's centroids along all three axes: bins[axis][bin] is the box of the
     // primitives whose centroid falls in that bin, counts[axis][bin] their number,
     // alones[axis][bin] how many of them are BuildBox::alone.
-    // (Binning a sample of a large range was tried: it misses the few large
-    // primitives, such as a floor under a scanned mesh, that dominate the
-    // areas; SAH cost +23% on a generated knot.)
+    // Every primitive is binned, not a sample of a large range: a sample misses
+    // the few large primitives, such as a floor under a scanned mesh, that
+    // dominate the areas, and the tree costs more.
     void bin_all(const Range& r, const float scale[3], int nb, Box8 bins[3][kBins], uint32_t counts[3][kBins],
                  uint32_t alones[3][kBins]) const {
         if (r.count() >= kParallelSplit) {
@@ -525,10 +242,10 @@ struct Builder {
         return p;
     }
 
-    // split() for two or three primitives, where binning's fixed cost (most of
-    // the build's splits are of these: 1.9M of 4.4M on a 4M-triangle mesh,
-    // ~500 cycles each) buys nothing: every way to split them is one primitive
-    // against the rest, so SAH is evaluated exactly for each.
+    // split() for two or three primitives, where binning's fixed cost buys
+    // nothing (and a large share of a mesh's splits are of these): every way to
+    // split them is one primitive against the rest, so SAH is evaluated exactly
+    // for each.
     bool split_tiny(Range& r, Range& left, Range& right) const {
         const uint32_t n = r.count();
         if (n <= 1) {
@@ -759,8 +476,10 @@ struct Builder {
 };
 
 }  // namespace
+}  // namespace bvh_builder
 
 void Bvh::build(BuildBox* boxes, size_t count, const BvhBuildOptions& options) {
+    using namespace bvh_builder;
     nodes.clear();
     prims.clear();
     depth = 0;
