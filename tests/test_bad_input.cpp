@@ -164,8 +164,8 @@ std::vector<Case> cases() {
                  {"line 14"}),
         ply_case("ply_coordinate_beyond_1e30", ascii_head + "-1 -1 -5\n1 -1 -5\n1 1e31 -5\n-1 1 -5\n3 0 1 2\n3 0 2 3\n",
                  {"vertex 2", "1e+31"}),
-        // The first fuzz finding: an ascii element without properties and a count of
-        // 8e10 made the reader loop over empty records for minutes.
+        // A fuzz finding: an ascii element without properties and a count of 8e10; a
+        // reader that loops over the empty records runs for minutes.
         ply_case("ply_empty_element_huge_count",
                  with(ascii_head, "element face", "element junk 84294967296\nelement face") +
                      "-1 -1 -5\n1 -1 -5\n1 1 -5\n-1 1 -5\n3 0 1 2\n3 0 2 9\n",

@@ -6,10 +6,8 @@
 // Scenes: random triangle soups and sphere sets of several sizes and seeds, including
 // coincident and overlapping primitives, needles and slivers, exactly degenerate
 // triangles and axis-aligned ones; plus the course's official meshes when the shared
-// folder is present ($RT_SHARED_DIR, ../shared or /work/shared).
+// folder is present (shared_dir(): $RT_SHARED_DIR or ../shared).
 #include <gtest/gtest.h>
-
-#include <sys/stat.h>
 
 #include <algorithm>
 #include <cmath>
@@ -27,9 +25,10 @@
 
 #include "rt/bvh/bvh.h"
 #include "rt/geometry/intersect.h"
-#include "rt/loader/load_scene.h"
 #include "rt/bvh/traverse.h"
 #include "rt/geometry/scene.h"
+#include "rt/loader/load_scene.h"
+#include "test_support.h"
 
 namespace {
 
@@ -415,7 +414,7 @@ struct SoupSpec {
 
 rt::SceneDesc random_scene(const SoupSpec& spec, Rng& rng) {
     rt::SceneDesc d;
-    d.path = "/tmp/bvh_test.json";
+    d.path = "/nonexistent/bvh_test.json";
     d.materials.push_back({});
     rt::MeshDesc m;
     auto point = [&]() {
@@ -1255,26 +1254,10 @@ TEST(BvhBoxTest, NeverRejectsABoxTheExactRayEnters) {
 
 // --- official meshes -------------------------------------------------------------------
 
-bool is_dir(const std::string& p) {
-    struct stat st;
-    return ::stat(p.c_str(), &st) == 0 && S_ISDIR(st.st_mode);
-}
-
-std::string find_shared() {
-    if (const char* env = std::getenv("RT_SHARED_DIR"); env && *env) return is_dir(env) ? env : "";
-    for (const char* p : {"../shared", "/work/shared"})
-        if (is_dir(p)) return p;
-    return "";
-}
-
 void check_official(const std::string& rel, int rays, size_t min_triangles) {
-    const std::string shared = find_shared();
-    if (shared.empty())
-        GTEST_SKIP() << "*** SKIPPED: the course's shared folder was not found (set RT_SHARED_DIR); " << rel
-                     << " not tested ***";
-    const std::string path = shared + "/scenes/hw1/" + rel;
-    struct stat st;
-    if (::stat(path.c_str(), &st) != 0) GTEST_SKIP() << "*** SKIPPED: " << path << " is missing ***";
+    SKIP_UNLESS_SHARED(rel);
+    const std::string path = shared_dir() + "/scenes/hw1/" + rel;
+    ASSERT_TRUE(file_exists(path)) << path << " is missing from the course's shared folder";
     const rt::Scene s = rt::build_scene(rt::load_scene(path));
     ASSERT_GE(s.geometry.triangles.size(), min_triangles) << path;
     check_structure(s);

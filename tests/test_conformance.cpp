@@ -31,10 +31,10 @@
 #include <vector>
 
 #include "rt/core/error.h"
+#include "rt/geometry/scene.h"
 #include "rt/image/image.h"
 #include "rt/loader/load_scene.h"
 #include "rt/render/render.h"
-#include "rt/geometry/scene.h"
 #include "test_support.h"
 
 namespace fs = std::filesystem;

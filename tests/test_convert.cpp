@@ -21,9 +21,9 @@
 
 #include "rt/convert/convert.h"
 #include "rt/core/error.h"
+#include "rt/geometry/scene.h"
 #include "rt/loader/load_scene.h"
 #include "rt/render/render.h"
-#include "rt/geometry/scene.h"
 #include "test_support.h"
 
 namespace fs = std::filesystem;

@@ -20,10 +20,10 @@
 
 #include "rt/bvh/traverse.h"
 #include "rt/camera/camera.h"
-#include "rt/geometry/intersect.h"
-#include "rt/loader/load_scene.h"
 #include "rt/core/math.h"
+#include "rt/geometry/intersect.h"
 #include "rt/geometry/scene.h"
+#include "rt/loader/load_scene.h"
 #include "rt/loader/scene_desc.h"
 
 namespace {
@@ -49,7 +49,7 @@ void expect_dir(Vec3 got, Vec3 want_unnormalised, const char* what) {
 // A scene holding nothing but the given camera object.
 rt::Scene camera_scene(const std::string& camera_json) {
     const std::string text = R"({"Scene": {"Cameras": {"Camera": )" + camera_json + "}}}";
-    return rt::build_scene(rt::parse_scene(text, "/tmp/x.json"));
+    return rt::build_scene(rt::parse_scene(text, "/nonexistent/x.json"));
 }
 
 // --- cameras -------------------------------------------------------------------
@@ -457,7 +457,7 @@ TEST(GeometryPlane, ParallelBehindAndRange) {
 
 rt::SceneDesc empty_desc() {
     rt::SceneDesc d;
-    d.path = "/tmp/x.json";
+    d.path = "/nonexistent/x.json";
     d.materials.push_back({});
     return d;
 }

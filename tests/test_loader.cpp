@@ -21,7 +21,7 @@ using nlohmann::json;
 using rt::Real;
 using rt::Vec3;
 
-const std::string kPath = "/tmp/rt_loader_test/scene.json";
+const std::string kPath = "/nonexistent/rt_loader_test/scene.json";
 
 // Tolerance for extents worked out by hand (double by default; float with PRECISION=float).
 const Real kClose = sizeof(Real) == sizeof(double) ? Real(1e-12) : Real(2e-6);
@@ -689,7 +689,7 @@ TEST(LoaderErrors, MissingPlyFile) {
     // PLY paths are relative to the scene file's folder.
     json j = sample();
     j["Scene"]["Objects"]["Mesh"]["Faces"] = {{"_plyFile", "meshes/nowhere.ply"}};
-    expect_error(j.dump(), "/Scene/Objects/Mesh/Faces", "/tmp/rt_loader_test/meshes/nowhere.ply");
+    expect_error(j.dump(), "/Scene/Objects/Mesh/Faces", "/nonexistent/rt_loader_test/meshes/nowhere.ply");
 }
 
 TEST(LoaderErrors, NegativeMaxRecursionDepth) {

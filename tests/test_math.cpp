@@ -11,8 +11,8 @@
 #include <random>
 #include <vector>
 
-#include "rt/image/image.h"
 #include "rt/core/math.h"
+#include "rt/image/image.h"
 #include "rt/render/render.h"
 
 namespace {

@@ -6,7 +6,6 @@
 // endian. Expected results are worked out by hand in each test.
 #include <gtest/gtest.h>
 #include <stdlib.h>
-#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cerrno>
@@ -196,23 +195,9 @@ void expect_error(const std::string& path, const std::string& place, const std::
 
 class PlyTest : public ::testing::Test {
 protected:
-    void SetUp() override {
-        char tmpl[] = "/tmp/rt_test_ply_XXXXXX";
-        const char* d = ::mkdtemp(tmpl);
-        ASSERT_NE(d, nullptr) << "mkdtemp failed: " << std::strerror(errno);
-        dir_ = d;
-    }
-    void TearDown() override {
-        if (dir_.empty()) return;
-        const char* keep = std::getenv("RT_KEEP_TEMP");
-        if (keep && std::string(keep) == "1") return;
-        std::error_code ec;
-        fs::remove_all(dir_, ec);
-    }
-
     // Writes bytes to <tempdir>/<name> and returns the path.
     std::string write(const std::string& name, const std::string& bytes) {
-        const std::string path = dir_ + "/" + name;
+        const std::string path = tmp_ / name;
         std::ofstream out(path, std::ios::binary);
         out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
         if (!out) throw std::runtime_error("cannot write " + path);
@@ -222,7 +207,7 @@ protected:
         return write(std::string(enc_name(enc)) + "_" + name, f.render(enc));
     }
 
-    std::string dir_;
+    TempDir tmp_;
 };
 
 // ---------------------------------------------------------------------------------
@@ -485,11 +470,11 @@ TEST_F(PlyTest, AsciiNumberSpellings) {
 // Errors
 
 TEST_F(PlyTest, MissingFileAndDirectory) {
-    const std::string missing = dir_ + "/does_not_exist.ply";
+    const std::string missing = tmp_ / "does_not_exist.ply";
     const std::string m = error_of(missing);
     EXPECT_EQ(m, missing + ": cannot open: " + std::strerror(ENOENT));
-    const std::string d = error_of(dir_);
-    EXPECT_EQ(d.rfind(dir_ + ": cannot open: ", 0), 0u) << d;
+    const std::string d = error_of(tmp_.path());
+    EXPECT_EQ(d.rfind(tmp_.path() + ": cannot open: ", 0), 0u) << d;
 }
 
 TEST_F(PlyTest, NotAPlyFile) {
@@ -793,26 +778,10 @@ TEST_F(PlyTest, LargeBinaryFile) {
 // ---------------------------------------------------------------------------------
 // The course's own files
 
-std::string find_shared_dir() {
-    struct stat st;
-    const char* env = std::getenv("RT_SHARED_DIR");
-    if (env && *env) return env;
-    for (const char* d : {"../shared", "/work/shared"})
-        if (::stat(d, &st) == 0 && S_ISDIR(st.st_mode)) return d;
-    return "";
-}
-
 TEST(PlyOfficialFiles, TonRoosendaalMesh2) {
-    const std::string shared = find_shared_dir();
-    const std::string path = shared + "/scenes/hw1/akif_uslu/ton_Roosendaal_smooth_ply/mesh_2.ply";
-    struct stat st;
-    if (shared.empty() || ::stat(path.c_str(), &st) != 0) {
-        std::fprintf(stderr,
-                     "\n*** WARNING: official PLY file not found (%s); set RT_SHARED_DIR. "
-                     "SKIPPING. ***\n\n",
-                     path.c_str());
-        GTEST_SKIP() << "official file not found: " << path;
-    }
+    SKIP_UNLESS_SHARED("the official PLY file mesh_2.ply");
+    const std::string path = shared_dir() + "/scenes/hw1/akif_uslu/ton_Roosendaal_smooth_ply/mesh_2.ply";
+    ASSERT_TRUE(file_exists(path)) << path << " is missing from the course's shared folder";
     const rt::PlyMesh m = rt::read_ply(path);
     EXPECT_EQ(m.positions.size(), 31072u);
     EXPECT_EQ(m.indices.size(), 3u * 62160u);

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "rt/image/bitmap_font.h"
 #include "rt/core/error.h"
+#include "rt/image/bitmap_font.h"
 #include "rt/image/image.h"
 #include "rt/image/image_diff.h"
 #include "test_support.h"

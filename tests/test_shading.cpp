@@ -11,10 +11,10 @@
 #include <limits>
 #include <string>
 
+#include "rt/geometry/scene.h"
 #include "rt/image/image.h"
 #include "rt/loader/load_scene.h"
 #include "rt/render/render.h"
-#include "rt/geometry/scene.h"
 #include "rt/shading/shading.h"
 
 namespace {
@@ -196,7 +196,7 @@ std::string camera(const std::string& res = "1 1", const std::string& near = "1"
 
 rt::Image render_json(const std::string& scene_body, const rt::RenderOptions& opt = {}) {
     const std::string text = "{\"Scene\": {" + scene_body + "}}";
-    const rt::Scene s = rt::build_scene(rt::parse_scene(text, "/tmp/shading_test.json"));
+    const rt::Scene s = rt::build_scene(rt::parse_scene(text, "/nonexistent/shading_test.json"));
     return rt::render(s, 0, opt);
 }
 

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -53,9 +54,19 @@ std::string shared_dir() {
     return absolute_of(dir);
 }
 
+std::string skipped_without_shared(const std::string& what) {
+    const std::string msg =
+        "SKIPPED: the course's shared folder was not found (set RT_SHARED_DIR); " + what + " not tested";
+    std::fprintf(stderr, "\n*** %s ***\n\n", msg.c_str());
+    std::fflush(stderr);
+    return msg;
+}
+
 std::string make_temp_dir() {
-    char tmpl[] = "/tmp/rt_test_XXXXXX";
-    if (!mkdtemp(tmpl)) throw std::runtime_error(std::string("mkdtemp: ") + std::strerror(errno));
+    std::error_code ec;
+    const fs::path base = fs::temp_directory_path(ec);
+    std::string tmpl = (ec ? fs::path(".") : base).string() + "/rt_test_XXXXXX";
+    if (!mkdtemp(tmpl.data())) throw std::runtime_error(std::string("mkdtemp: ") + std::strerror(errno));
     return tmpl;
 }
 

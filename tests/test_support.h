@@ -11,7 +11,18 @@
 // as an absolute path; empty when the chosen folder does not exist.
 std::string shared_dir();
 
-// A fresh, empty folder under /tmp (mkdtemp). Throws std::runtime_error on failure.
+// The message of a test skipped because shared_dir() is empty, after printing it to
+// stderr in a banner: a missing shared folder is loud, never a silent pass.
+std::string skipped_without_shared(const std::string& what);
+
+// At the top of a test that needs the course's files: skips it loudly (a banner on
+// stderr, "[  SKIPPED ]" and the summary line's skipped count) when shared_dir() is
+// empty. A file missing from a shared folder that is there is a failure, not a skip.
+#define SKIP_UNLESS_SHARED(what) \
+    if (shared_dir().empty()) GTEST_SKIP() << skipped_without_shared(what)
+
+// A fresh, empty folder in the system's temporary folder (std::filesystem::temp_directory_path,
+// $TMPDIR when set; mkdtemp). Throws std::runtime_error on failure.
 std::string make_temp_dir();
 
 // A make_temp_dir() folder removed with everything in it when the object dies.

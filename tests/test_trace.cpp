@@ -24,10 +24,10 @@
 #include <nlohmann/json.hpp>
 
 #include "rt/core/error.h"
+#include "rt/geometry/scene.h"
 #include "rt/image/image.h"
 #include "rt/loader/load_scene.h"
 #include "rt/render/render.h"
-#include "rt/geometry/scene.h"
 #include "rt/shading/trace.h"
 #include "test_support.h"
 

@@ -17,10 +17,10 @@
 
 #include "rt/convert/convert.h"
 #include "rt/core/error.h"
+#include "rt/geometry/scene.h"
 #include "rt/image/image.h"
 #include "rt/loader/load_scene.h"
 #include "rt/render/render.h"
-#include "rt/geometry/scene.h"
 #include "test_support.h"
 
 namespace fs = std::filesystem;
@@ -348,7 +348,9 @@ TEST(ImageOutput, FormatByExtension) {
     img.width = 1;
     img.height = 1;
     img.rgb = {1, 2, 3};
-    EXPECT_THROW(rt::write_image(img, "/tmp/x.gif"), rt::InputError);
+    TempDir tmp;
+    EXPECT_THROW(rt::write_image(img, tmp / "x.gif"), rt::InputError);
+    EXPECT_FALSE(file_exists(tmp / "x.gif"));
 }
 
 // ---- The 13 official XML scenes ------------------------------------------------------

@@ -17,7 +17,7 @@
 set -eu
 tarball=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
 repo=$(pwd)
-work=$(mktemp -d /tmp/rt_dist_XXXXXX)
+work=$(mktemp -d -t rt_dist_XXXXXX)
 trap 'rm -rf "$work"' EXIT INT TERM
 fail() { echo "dist-check: FAIL: $*" >&2; exit 1; }
 

@@ -12,11 +12,12 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 
 #include "rt/core/error.h"
-#include "rt/loader/load_scene.h"
 #include "rt/geometry/scene.h"
+#include "rt/loader/load_scene.h"
 #include "rt/shading/shading.h"
 
 namespace {
@@ -37,8 +38,8 @@ void write_file(const std::string& path, const std::string& bytes) {
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
-    char tmpl[] = "/tmp/rt_fuzz_scene_XXXXXX";
-    if (!mkdtemp(tmpl)) std::abort();
+    std::string tmpl = std::filesystem::temp_directory_path().string() + "/rt_fuzz_scene_XXXXXX";
+    if (!mkdtemp(tmpl.data())) std::abort();
     const std::string dir = tmpl;
     write_file(dir + "/mesh.ply",
                "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty float y\n"
