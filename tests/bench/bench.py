@@ -255,10 +255,11 @@ def large_scenes(sizes, shape_sizes, scene_dir):
 def ensure_gen_mesh(path):
     if os.path.isfile(path) and os.access(path, os.X_OK):
         return path
-    src = os.path.join(REPO, "tests", "bench", "gen_mesh.cpp")
+    src_dir = os.path.join(REPO, "tests", "bench", "gen_mesh")
+    srcs = sorted(os.path.join(src_dir, f) for f in os.listdir(src_dir) if f.endswith(".cpp"))
     os.makedirs(os.path.dirname(path), exist_ok=True)
     cxx = os.environ.get("CXX", "g++")
-    cmd = [cxx, "-O2", "-std=c++17", "-ffp-contract=off", "-o", path, src]
+    cmd = [cxx, "-O2", "-std=c++17", "-ffp-contract=off", "-o", path] + srcs
     log("building gen_mesh: " + " ".join(cmd))
     subprocess.run(cmd, check=True)
     return path
