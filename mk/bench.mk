@@ -1,4 +1,5 @@
-# Benchmarks against refrender (../shared/tools): tests/bench/bench.py, tests/bench/gen_mesh.cpp.
+# Benchmarks against refrender (../shared/tools): tests/bench/bench.py (its modules bench_*.py beside it),
+# the scene generator tests/bench/gen_mesh/ (main.cpp, one .cpp per shape, gen_mesh.h).
 #   make bench                          every complete official scene + knot_{1m,4m,16m}_{plain,glass,gold}
 #                                       + blob_1m_{plain,glass}, terrain_1m, city_1m, soup_1m (docs/bench-scenes.md),
 #                                       each with --cull and with --no-cull on both sides, 5 runs
@@ -6,11 +7,12 @@
 #   make bench BENCH_ARGS="--scenes bunny,knot_1m --runs 3 --threads 2 --cull-modes no-cull"   (see bench.py --help)
 # Generated scenes go to build/bench/scenes/, the report to build/bench/bench.{md,json}.
 BENCH_GEN  := build/bench/gen_mesh
+BENCH_GEN_SRC := $(sort $(wildcard tests/bench/gen_mesh/*.cpp))
 BENCH_ARGS ?=
 
-$(BENCH_GEN): tests/bench/gen_mesh.cpp
+$(BENCH_GEN): $(BENCH_GEN_SRC) tests/bench/gen_mesh/gen_mesh.h
 	@mkdir -p $(dir $@)
-	$(CXX) -O2 -std=c++17 -ffp-contract=off -Wall -Wextra -o $@ $<
+	$(CXX) -O2 -std=c++17 -ffp-contract=off -Wall -Wextra -o $@ $(BENCH_GEN_SRC)
 
 .PHONY: bench bench-quick
 bench: raytracer $(BENCH_GEN)

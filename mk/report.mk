@@ -1,4 +1,4 @@
-# make report: the blog companion (tests/report/report.py). Renders every complete
+# make report: the blog companion (tests/report/report.py, its modules report_*.py beside it). Renders every complete
 # official scene and our own with culling off and on, measures float against double,
 # ShadowRayEpsilon x0.1 / x10, --min-weight 0, MaxRecursionDepth 0..8 and BVH build
 # variants, and writes report/ (gitignored): index.md, index.html, chart.svg, report.json, img/.

@@ -1,55 +1,57 @@
 #!/usr/bin/env python3
-"""Unit tests of report.py's pure parts: timings, ratios and their noise marks, and the
-Markdown spans of its HTML. Standard library only: python3 tests/report/test_report.py"""
+"""Unit tests of report.py's pure parts: timings, ratios and their noise marks
+(report_timing.py), and the Markdown spans of its HTML (report_doc.py). Standard library
+only: python3 tests/report/test_report.py"""
 import os
 import sys
 import unittest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-import report  # noqa: E402
+import report_doc  # noqa: E402
+import report_timing  # noqa: E402
 
 
 class RatioText(unittest.TestCase):
     def test_apart_spreads_give_a_plain_ratio(self):
-        off = report.Timing(2.0, 1.9, 2.1, 3)
-        on = report.Timing(1.0, 0.95, 1.05, 3)
-        self.assertEqual(report.ratio_text(off, on), "2.00x")
+        off = report_timing.Timing(2.0, 1.9, 2.1, 3)
+        on = report_timing.Timing(1.0, 0.95, 1.05, 3)
+        self.assertEqual(report_timing.ratio_text(off, on), "2.00x")
 
     def test_overlapping_spreads_are_within_noise(self):
-        a = report.Timing(1.05, 0.90, 1.20, 3)
-        b = report.Timing(1.00, 0.95, 1.10, 3)
-        self.assertEqual(report.ratio_text(a, b), "1.05x (within noise)")
-        self.assertEqual(report.ratio_text(b, a), "0.95x (within noise)")
+        a = report_timing.Timing(1.05, 0.90, 1.20, 3)
+        b = report_timing.Timing(1.00, 0.95, 1.10, 3)
+        self.assertEqual(report_timing.ratio_text(a, b), "1.05x (within noise)")
+        self.assertEqual(report_timing.ratio_text(b, a), "0.95x (within noise)")
 
     def test_touching_spreads_are_within_noise(self):
-        self.assertEqual(report.ratio_text(report.Timing(1.2, 1.1, 1.3, 2), report.Timing(1.0, 0.9, 1.1, 2)),
+        self.assertEqual(report_timing.ratio_text(report_timing.Timing(1.2, 1.1, 1.3, 2), report_timing.Timing(1.0, 0.9, 1.1, 2)),
                          "1.20x (within noise)")
 
     def test_a_single_render_cannot_be_judged(self):
-        self.assertEqual(report.ratio_text(report.Timing(1.5, 1.5, 1.5, 1), report.Timing(1.0, 0.8, 1.2, 5)),
+        self.assertEqual(report_timing.ratio_text(report_timing.Timing(1.5, 1.5, 1.5, 1), report_timing.Timing(1.0, 0.8, 1.2, 5)),
                          "1.50x (one run)")
 
     def test_missing_or_zero_time(self):
-        self.assertEqual(report.ratio_text(None, report.Timing(1, 1, 1, 3)), "—")
-        self.assertEqual(report.ratio_text(report.Timing(1, 1, 1, 3), report.Timing(0, 0, 0, 3)), "—")
+        self.assertEqual(report_timing.ratio_text(None, report_timing.Timing(1, 1, 1, 3)), "—")
+        self.assertEqual(report_timing.ratio_text(report_timing.Timing(1, 1, 1, 3), report_timing.Timing(0, 0, 0, 3)), "—")
 
     def test_totals_sum_medians_and_extremes(self):
-        t = report.Timing.total([report.Timing(1, 0.5, 2, 3), report.Timing(3, 2, 4, 5)])
+        t = report_timing.Timing.total([report_timing.Timing(1, 0.5, 2, 3), report_timing.Timing(3, 2, 4, 5)])
         self.assertEqual((t.median, t.lo, t.hi, t.n), (4, 2.5, 6, 3))
-        self.assertIsNone(report.Timing.total([report.Timing(1, 1, 1, 1), None]))
-        self.assertIsNone(report.Timing.total([]))
+        self.assertIsNone(report_timing.Timing.total([report_timing.Timing(1, 1, 1, 1), None]))
+        self.assertIsNone(report_timing.Timing.total([]))
 
 
 class HtmlInline(unittest.TestCase):
     def test_bold_and_code_spans(self):
-        self.assertEqual(report.html_inline("**all**"), "<strong>all</strong>")
-        self.assertEqual(report.html_inline("`a<b` and **x & y**"), "<code>a&lt;b</code> and <strong>x &amp; y</strong>")
+        self.assertEqual(report_doc.html_inline("**all**"), "<strong>all</strong>")
+        self.assertEqual(report_doc.html_inline("`a<b` and **x & y**"), "<code>a&lt;b</code> and <strong>x &amp; y</strong>")
 
     def test_asterisks_inside_code_stay(self):
-        self.assertEqual(report.html_inline("`**not bold**`"), "<code>**not bold**</code>")
+        self.assertEqual(report_doc.html_inline("`**not bold**`"), "<code>**not bold**</code>")
 
     def test_the_culling_table_total_row_is_bold_in_html(self):
-        doc = report.Doc()
+        doc = report_doc.Doc()
         doc.table(["scene", "time"], [["**all**", "1.0"]])
         page = doc.html("t")
         self.assertIn("<strong>all</strong>", page)
