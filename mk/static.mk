@@ -1,4 +1,4 @@
-# ./raytracer is linked statically where it can be (docs/speed.md, "static linking"):
+# ./raytracer is linked statically where it can be (docs/performance.md, "static linking"):
 # each run then skips the dynamic loader's work for libstdc++, libm, libpugixml and
 # libdeflate, about 4 ms a run, which the 19 official scene files pay 19 times. A probe
 # links an empty program with -static and ./raytracer's libraries; without their static

@@ -10,7 +10,7 @@ namespace rt::bvh_builder {
 
 // Collapsing: fewer, fuller nodes. Splitting top-down leaves most nodes at the
 // bottom with a few leaves each (a range just over max_leaf becomes a node of two
-// leaves): at 16M triangles nearly half the child slots were empty (docs/speed.md).
+// leaves): at 16M triangles nearly half the child slots were empty (docs/performance.md).
 // So once a node's subtrees are built, the node
 //  1. merges two child nodes that hold only leaves into one when their leaves fit
 //     one node and the box around both has less surface area than the two boxes

@@ -15,7 +15,7 @@ namespace rt {
 // at random: with 4 KiB pages nearly every node load below the top levels is
 // also a TLB miss. 2 MiB pages (transparent huge pages, where the kernel grants
 // them on request) cover it with few TLB entries, which makes large scenes render
-// faster at no cost to the build (docs/speed.md). The triangles, boxes and
+// faster at no cost to the build (docs/performance.md). The triangles, boxes and
 // primitive order are not asked the same: it made loading slower, and rays no
 // faster.
 void NodeArray::allocate(size_t capacity) {

@@ -238,7 +238,7 @@ inline double box_pad(const Bvh& bvh, const Ray& r) {
 // Float rays test boxes in float, conservatively: the float slab interval
 // contains the exact one of the padded box, so no box the exact ray enters once
 // padded by box_pad is rejected (docs/precision.md, "Float box tests"; the proof is
-// that of docs/float-box-tests.md, with the padded origins as the ray's origins).
+// that of docs/precision.md, with the padded origins as the ray's origins).
 using BoxReal = float;
 
 // Relative widening of 1/dir, towards zero for the near planes and away from it for
@@ -563,7 +563,7 @@ inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint16_t 
 
 // Starts loading the node a stack entry names while the traversal goes on: the ray
 // reaches it after the nearer subtrees, and the traversal mostly waits for node
-// loads. Leaves are not prefetched: that measured slower (docs/speed.md).
+// loads. Leaves are not prefetched: that measured slower (docs/performance.md).
 inline void prefetch_node(const Bvh& bvh, int32_t child) {
     if (child < 0) return;
     const char* p = reinterpret_cast<const char*>(&bvh.nodes[child]);

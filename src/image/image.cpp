@@ -34,7 +34,7 @@ void write_bytes(void* context, void* data, int size) {
 // The deflate level, 4 on either scale: libdeflate's where stb_impl.cpp hands stb's zlib
 // stream to libdeflate (its levels 2 to 4 take about the same time, 5 and up markedly
 // more; 4 makes the smallest files of the three), stb's own otherwise (as before).
-// docs/png.md has the measurements.
+// docs/performance.md has the measurements.
 constexpr int kPngLevel = 4;
 }  // namespace
 

@@ -91,7 +91,7 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
     // on the calling thread would keep its per-ray state (TraceCache, spilled locals)
     // on the stack right below this frame, whose variables the other workers read for
     // every ray: a cache line shared that way, depending on where the stack starts,
-    // made renders up to 1.4x slower (docs/speed.md). A worker whose thread cannot
+    // made renders up to 1.4x slower (docs/performance.md). A worker whose thread cannot
     // start renders on this thread as it starts (HelperThread); the others find fewer
     // tiles left.
     const bool caller_renders = !watch && threads == 1;

@@ -3,7 +3,7 @@
 // serves eight children. Rays through large
 // meshes mostly wait for node loads; a wider node means fewer levels, so fewer
 // dependent loads per ray, and the eight float boxes fill one AVX register as
-// Embree's 8-wide nodes do (docs/speed.md). Bounds are stored as float,
+// Embree's 8-wide nodes do (docs/performance.md). Bounds are stored as float,
 // rounded outwards, so every box contains its primitives exactly even when
 // Real is double; the box test itself runs in Real (traverse.cpp). Leaves hold
 // up to kDefaultMaxLeaf primitives, tested kLeafBlock at a time (one SIMD register: four doubles
@@ -145,7 +145,7 @@ inline constexpr uint32_t kLeafBlock = 1;
 #endif
 
 // The largest leaf by default: 8 in double, 16 in float (two blocks of eight). In
-// float, leaves of 16 render as fast and take a third fewer nodes (docs/speed.md).
+// float, leaves of 16 render as fast and take a third fewer nodes (docs/performance.md).
 inline constexpr uint32_t kDefaultMaxLeaf = std::is_same_v<Real, float> ? 16 : 8;
 
 // Build quality knobs (the raytracer's hidden --bvh-* options, for measurements);
@@ -161,7 +161,7 @@ struct BvhBuildOptions {
     bool collapse = true;  // false: keep the top-down tree's sparse bottom nodes (bvh_build.cpp)
     // Leaf-order vertices (scene.h, LeafVertices) in double for scenes of up to
     // this many primitives (72 bytes a triangle, at most 9 MiB: a copy that stays
-    // in cache), in float above (docs/speed.md); 0: never double. Double builds
+    // in cache), in float above (docs/performance.md); 0: never double. Double builds
     // only: with Real = float the copy is always in float.
     size_t double_copy_max = size_t(1) << 17;
 
@@ -171,7 +171,7 @@ struct BvhBuildOptions {
     // many triangles as one leaf test takes (kLeafBlock), but at most four where they
     // come from the double copy: eight doubles a coordinate fill a 64-byte line, twice
     // the bytes of eight floats, and leaves priced as if they held four made the small
-    // scenes' secondary rays faster (docs/speed.md, session 16).
+    // scenes' secondary rays faster (docs/performance.md, session 16).
     uint32_t block_for(size_t n) const {
         if (block != 0) return std::min<uint32_t>(block, 16);
         return double_copies(n) ? std::min<uint32_t>(kLeafBlock, 4) : kLeafBlock;

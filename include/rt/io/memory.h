@@ -2,7 +2,7 @@
 //
 // A page fault costs microseconds, on virtual machines several: a process that
 // touches a gigabyte of new 4 KiB pages spends a large part of its time in them
-// (docs/speed.md, "huge pages"). allocate_bytes backs every large allocation with
+// (docs/performance.md, "huge pages"). allocate_bytes backs every large allocation with
 // 2 MiB transparent huge pages where the kernel grants them (madvise(MADV_HUGEPAGE);
 // refused or not configured, the pages stay small and nothing else changes): one
 // fault per 2 MiB instead of 512. The global operator new goes through it
