@@ -24,8 +24,8 @@
 #include <vector>
 
 #include "rt/bvh/bvh.h"
-#include "rt/geometry/intersect.h"
 #include "rt/bvh/traverse.h"
+#include "rt/geometry/intersect.h"
 #include "rt/geometry/scene.h"
 #include "rt/loader/load_scene.h"
 #include "test_support.h"
@@ -107,7 +107,8 @@ Answer brute_closest(const rt::Scene& s, const rt::Ray& r, Real tmin, Real tmax,
     }
     for (size_t i = 0; i < s.geometry.all<rt::Sphere>().size(); ++i, ++gid) {
         Real t;
-        if (rt::intersect_sphere(r, s.geometry.all<rt::Sphere>()[i].center, s.geometry.all<rt::Sphere>()[i].radius, tmin, tmax, t) &&
+        if (rt::intersect_sphere(r, s.geometry.all<rt::Sphere>()[i].center, s.geometry.all<rt::Sphere>()[i].radius,
+                                 tmin, tmax, t) &&
             t < a.t) {
             a.found = true;
             a.t = t;
@@ -116,7 +117,9 @@ Answer brute_closest(const rt::Scene& s, const rt::Ray& r, Real tmin, Real tmax,
     }
     for (size_t i = 0; i < s.geometry.all<rt::Plane>().size(); ++i, ++gid) {
         Real t;
-        if (rt::intersect_plane(r, s.geometry.all<rt::Plane>()[i].point, s.geometry.all<rt::Plane>()[i].normal, tmin, tmax, t) && t < a.t) {
+        if (rt::intersect_plane(r, s.geometry.all<rt::Plane>()[i].point, s.geometry.all<rt::Plane>()[i].normal, tmin,
+                                tmax, t) &&
+            t < a.t) {
             a.found = true;
             a.t = t;
             a.gid = gid;
@@ -485,7 +488,8 @@ rt::SceneDesc random_scene(const SoupSpec& spec, Rng& rng) {
     if (!m.indices.empty()) d.meshes.push_back(m);
     for (int i = 0; i < spec.spheres; ++i) {
         if (i > 0 && rng() % 8 == 0) {
-            d.all<rt::Sphere>().push_back(d.all<rt::Sphere>()[pick(rng, d.all<rt::Sphere>().size())]);  // coincident: exact tie
+            d.all<rt::Sphere>().push_back(
+                d.all<rt::Sphere>()[pick(rng, d.all<rt::Sphere>().size())]);  // coincident: exact tie
         } else {
             rt::SphereDesc sp;
             sp.center = point();

@@ -107,12 +107,14 @@ std::string canonical(const std::string& path) {
     }
     if (a.all<rt::Sphere>().size() != b.all<rt::Sphere>().size()) differ("sphere count");
     for (size_t i = 0; i < std::min(a.all<rt::Sphere>().size(), b.all<rt::Sphere>().size()); ++i)
-        if (a.all<rt::Sphere>()[i].material != b.all<rt::Sphere>()[i].material || !same(a.all<rt::Sphere>()[i].center, b.all<rt::Sphere>()[i].center) ||
+        if (a.all<rt::Sphere>()[i].material != b.all<rt::Sphere>()[i].material ||
+            !same(a.all<rt::Sphere>()[i].center, b.all<rt::Sphere>()[i].center) ||
             a.all<rt::Sphere>()[i].radius != b.all<rt::Sphere>()[i].radius)
             differ("sphere " + std::to_string(i));
     if (a.all<rt::Plane>().size() != b.all<rt::Plane>().size()) differ("plane count");
     for (size_t i = 0; i < std::min(a.all<rt::Plane>().size(), b.all<rt::Plane>().size()); ++i)
-        if (a.all<rt::Plane>()[i].material != b.all<rt::Plane>()[i].material || !same(a.all<rt::Plane>()[i].point, b.all<rt::Plane>()[i].point) ||
+        if (a.all<rt::Plane>()[i].material != b.all<rt::Plane>()[i].material ||
+            !same(a.all<rt::Plane>()[i].point, b.all<rt::Plane>()[i].point) ||
             !same(a.all<rt::Plane>()[i].normal, b.all<rt::Plane>()[i].normal))
             differ("plane " + std::to_string(i));
     if (why.str().empty()) return ::testing::AssertionSuccess();

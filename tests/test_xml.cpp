@@ -376,7 +376,8 @@ TEST(XmlOfficial, AllThirteenLoadAndRender) {
             EXPECT_NE(rt::image_format_of(c.image_name), rt::ImageFormat::Unknown) << c.image_name;
         }
         const rt::Scene s = rt::build_scene(d);
-        EXPECT_GT(s.geometry.triangles.size() + s.geometry.all<rt::Sphere>().size() + s.geometry.all<rt::Plane>().size(), 0u);
+        EXPECT_GT(
+            s.geometry.triangles.size() + s.geometry.all<rt::Sphere>().size() + s.geometry.all<rt::Plane>().size(), 0u);
         for (size_t c = 0; c < s.setup.cameras.size(); ++c) {
             const rt::Image img = rt::render(s, c, rt::RenderOptions{});
             EXPECT_GT(*std::max_element(img.rgb.begin(), img.rgb.end()), 0) << "camera " << c + 1 << " is all black";

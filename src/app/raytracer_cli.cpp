@@ -6,12 +6,12 @@
 #include <type_traits>
 #include <vector>
 
-#include "rt/io/atomic_file.h"
+#include "rt/app/program.h"
+#include "rt/app/run.h"
 #include "rt/cli/options.h"
 #include "rt/core/error.h"
 #include "rt/image/image.h"
-#include "rt/app/program.h"
-#include "rt/app/run.h"
+#include "rt/io/atomic_file.h"
 
 namespace rt {
 namespace {

@@ -13,12 +13,12 @@
 #include <utility>
 
 #include "progress.h"
-#include "rt/io/atomic_file.h"
 #include "rt/cli/options.h"
 #include "rt/core/error.h"
-#include "rt/image/image.h"
-#include "rt/loader/load_scene.h"
 #include "rt/geometry/scene.h"
+#include "rt/image/image.h"
+#include "rt/io/atomic_file.h"
+#include "rt/loader/load_scene.h"
 #include "rt/shading/trace.h"
 
 namespace rt {

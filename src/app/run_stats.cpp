@@ -11,8 +11,8 @@
 #include <fstream>
 #include <thread>
 
-#include "rt/core/real.h"
 #include "rt/app/run.h"
+#include "rt/core/real.h"
 
 namespace rt {
 namespace app {

@@ -21,8 +21,8 @@
 #pragma GCC diagnostic pop
 #endif
 
-#include "rt/geometry/intersect.h"
 #include "rt/bvh/traverse.h"
+#include "rt/geometry/intersect.h"
 
 namespace rt {
 namespace {

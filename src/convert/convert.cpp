@@ -6,9 +6,9 @@
 #include <string>
 
 #include "obj_import.h"
-#include "rt/io/atomic_file.h"
 #include "rt/convert/convert.h"
 #include "rt/core/error.h"
+#include "rt/io/atomic_file.h"
 #include "rt/io/files.h"
 #include "rt/loader/load_scene.h"
 #include "rt/loader/scene_tree.h"

@@ -2,9 +2,9 @@
 #include <cstring>
 #include <string>
 
-#include "rt/io/atomic_file.h"
 #include "rt/convert/convert.h"
 #include "rt/core/error.h"
+#include "rt/io/atomic_file.h"
 
 namespace rt {
 namespace {

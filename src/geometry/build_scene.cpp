@@ -6,8 +6,8 @@
 #include <utility>
 #include <vector>
 
-#include "rt/geometry/scene.h"
 #include "rt/core/threads.h"
+#include "rt/geometry/scene.h"
 
 namespace rt {
 namespace {

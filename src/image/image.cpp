@@ -7,10 +7,10 @@
 #include <string>
 #include <string_view>
 
-#include "rt/io/atomic_file.h"
 #include "rt/core/error.h"
-#include "rt/io/files.h"
 #include "rt/image/image.h"
+#include "rt/io/atomic_file.h"
+#include "rt/io/files.h"
 
 namespace rt {
 

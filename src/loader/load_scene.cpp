@@ -1,8 +1,8 @@
 // The scene loader's entry points (rt/loader/load_scene.h): the file's name picks the reader
 // (JSON or the course's XML), each reader produces the same JSON tree
 // (rt/loader/scene_tree.h), and scene_from_json turns that tree into a SceneDesc.
-#include "rt/io/files.h"
 #include "rt/loader/load_scene.h"
+#include "rt/io/files.h"
 #include "rt/loader/scene_tree.h"
 
 namespace rt {

@@ -473,12 +473,8 @@ private:
         const json& obj;
         const std::string& path;
         Vec3 vertex(const char* key) const { return l.vertex_ref(obj, path, key); }
-        Real positive(const char* key) const {
-            return l.positive(l.require(obj, path, key), path + "/" + key);
-        }
-        Vec3 nonzero_vec3(const char* key) const {
-            return l.nonzero_vec3(l.require(obj, path, key), path + "/" + key);
-        }
+        Real positive(const char* key) const { return l.positive(l.require(obj, path, key), path + "/" + key); }
+        Vec3 nonzero_vec3(const char* key) const { return l.nonzero_vec3(l.require(obj, path, key), path + "/" + key); }
     };
 
     void load_objects(const json& scene, const std::string& sp) {

@@ -10,9 +10,9 @@
 #include <vector>
 
 #include "rt/bvh/traverse.h"
+#include "rt/core/threads.h"
 #include "rt/render/render.h"
 #include "rt/shading/shading.h"
-#include "rt/core/threads.h"
 
 namespace rt {
 

@@ -10,11 +10,11 @@
 #include <string>
 #include <vector>
 
-#include "rt/io/atomic_file.h"
 #include "rt/cli/options.h"
 #include "rt/core/error.h"
 #include "rt/image/image.h"
 #include "rt/image/image_diff.h"
+#include "rt/io/atomic_file.h"
 
 namespace fs = std::filesystem;
 

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "rt/core/error.h"
-#include "rt/loader/load_scene.h"
 #include "rt/geometry/scene.h"
+#include "rt/loader/load_scene.h"
 
 namespace {
 
@@ -129,8 +129,8 @@ int main(int argc, char** argv) {
         std::printf(
             "%s: %zu primitives, medians of %d: boxes %.3f s, build %.3f s wall, %.3f s cpu (first %.3f s); "
             "%zu nodes, SAH cost %.4f; fastest %.3f s wall, %.3f s cpu\n",
-            path.c_str(), size_t(s.geometry.bounded_count()), runs, median(box_wall), median(wall),
-            median(cpu), wall[0], nodes, cost, *std::min_element(wall.begin(), wall.end()),
+            path.c_str(), size_t(s.geometry.bounded_count()), runs, median(box_wall), median(wall), median(cpu),
+            wall[0], nodes, cost, *std::min_element(wall.begin(), wall.end()),
             *std::min_element(cpu.begin(), cpu.end()));
         const size_t slots = nodes * rt::BvhNode::kWidth;
         std::printf("child slots: %zu inner, %zu leaves (%.2f primitives each), %zu empty (%.1f%%)\n", fill.inner,

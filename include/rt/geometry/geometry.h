@@ -140,11 +140,11 @@ struct Geometry {
     bool intersect(const RayPre& p, ShapeRef s, Real tmin, Real tmax, Real& t, Real w[3]) const {
         if (s.kind == ShapeKind::Triangle) {
             const Triangle& tri = triangles[s.index];
-            return intersect_triangle<kCull, kShadow>(p, positions[tri.v[0]], positions[tri.v[1]],
-                                                      positions[tri.v[2]], tmin, tmax, t, w);
+            return intersect_triangle<kCull, kShadow>(p, positions[tri.v[0]], positions[tri.v[1]], positions[tri.v[2]],
+                                                      tmin, tmax, t, w);
         }
-        return visit_shape<bool>(
-            s.kind, [&](auto k) { return all<decltype(k)>()[s.index].intersect(p.ray, tmin, tmax, t); });
+        return visit_shape<bool>(s.kind,
+                                 [&](auto k) { return all<decltype(k)>()[s.index].intersect(p.ray, tmin, tmax, t); });
     }
 
     // Vertex k of the triangle of `h` from its leaf-order vertices (h.corners).

@@ -78,8 +78,8 @@ struct SceneDesc {
     std::vector<CameraDesc> cameras;
     std::vector<PointLightDesc> point_lights;
     std::vector<MaterialDesc> materials;
-    std::vector<MeshDesc> meshes;  // Objects/Triangle entries become one-triangle flat meshes
-    ShapeDescVectors shapes;       // the other kinds (rt/shapes/shapes.h): all<Sphere>(), ...
+    std::vector<MeshDesc> meshes;       // Objects/Triangle entries become one-triangle flat meshes
+    ShapeDescVectors shapes;            // the other kinds (rt/shapes/shapes.h): all<Sphere>(), ...
     std::vector<std::string> warnings;  // unknown keys, skipped degenerate triangles, ...
     double ply_seconds = 0;             // spent reading PLY files, for --stats
 

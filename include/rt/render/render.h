@@ -2,8 +2,8 @@
 #pragma once
 #include <functional>
 
-#include "rt/image/image.h"
 #include "rt/geometry/scene.h"
+#include "rt/image/image.h"
 #include "rt/shading/shading.h"
 
 namespace rt {

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "rt/image/image.h"
 #include "rt/core/math.h"
 #include "rt/geometry/scene.h"
+#include "rt/image/image.h"
 #include "rt/shading/shading.h"
 
 namespace rt {

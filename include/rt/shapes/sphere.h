@@ -98,7 +98,8 @@ struct Sphere {
         auto at = [&](int r, int k) { return uint32_t(1 + (r - 1) * segments + k % segments); };
         for (int k = 0; k < segments; ++k) out.faces.push_back({0, at(1, k + 1), at(1, k)});
         for (int r = 1; r + 1 < rings; ++r)
-            for (int k = 0; k < segments; ++k) out.faces.push_back({at(r, k), at(r, k + 1), at(r + 1, k + 1), at(r + 1, k)});
+            for (int k = 0; k < segments; ++k)
+                out.faces.push_back({at(r, k), at(r, k + 1), at(r + 1, k + 1), at(r + 1, k)});
         for (int k = 0; k < segments; ++k) out.faces.push_back({at(rings - 1, k), at(rings - 1, k + 1), south});
         return out;
     }
