@@ -107,7 +107,7 @@ public:
         if (r.shaded)
             line(in + 1, "shadow rays start at " + vec(r.point + r.ns * eps) + ", point + shading normal x eps");
         line(in + 1, "reflected rays start at " + vec(r.point + r.nf * eps) + ", point + facing normal x eps");
-        if (m.type == MaterialType::Dielectric)
+        if (refracts(m.type))
             line(in + 1, "refracted rays start at " + vec(r.point - r.nf * eps) + ", point - facing normal x eps");
         line(in, "material " + material_id(scene_, r.material) + " (" + material_type_name(m.type) + ")");
         if (r.shaded) {
@@ -115,9 +115,9 @@ public:
             for (const LightTrace& l : r.lights) light(l, in);
             line(in, "local (ambient + lights) " + vec(r.local));
         } else {
-            line(in, "not shaded (a dielectric hit from inside)");
+            line(in, std::string("not shaded (a ") + material_type_name(m.type) + " hit from inside)");
         }
-        if (r.has_fresnel) fresnel(r, m.type == MaterialType::Dielectric, in);
+        if (r.has_fresnel) fresnel(r, in);
         if (r.beer) line(in, "Beer's law over distance " + num(r.t) + ": attenuation " + vec(r.attenuation));
         if (r.depth_limit) line(in, "MaxRecursionDepth reached: no secondary rays");
         for (const RayTrace& c : r.children) ray(c, in, true);
@@ -125,19 +125,22 @@ public:
     }
 
     // The Fresnel equations' terms (rt/shading/shading.h, FresnelTerms).
-    void fresnel(const RayTrace& r, bool dielectric, int indent) {
+    void fresnel(const RayTrace& r, int indent) {
         const FresnelTerms& f = r.fresnel;
-        if (dielectric) {
-            line(indent, "Fresnel (dielectric): n1 " + num(f.eta_i) + " -> n2 " + num(f.eta_t) + ", cos theta_i " +
-                             num(f.cos_i) + ", sin^2 theta_t " + num(f.sin_t2) +
-                             (f.sin_t2 < 1 ? ", cos theta_t " + num(f.cos_t) : " (>= 1)"));
-        } else {
-            line(indent, "Fresnel (conductor): n1 1 -> n2 " + num(f.eta_t) + " + " + num(f.k) + "i, cos theta_i " +
-                             num(f.cos_i));
+        switch (f.formula) {
+            case FresnelFormula::Dielectric:
+                line(indent, "Fresnel (dielectric): n1 " + num(f.eta_i) + " -> n2 " + num(f.eta_t) + ", cos theta_i " +
+                                 num(f.cos_i) + ", sin^2 theta_t " + num(f.sin_t2) +
+                                 (f.sin_t2 < 1 ? ", cos theta_t " + num(f.cos_t) : " (>= 1)"));
+                break;
+            case FresnelFormula::Conductor:
+                line(indent, "Fresnel (conductor): n1 1 -> n2 " + num(f.eta_t) + " + " + num(f.k) + "i, cos theta_i " +
+                                 num(f.cos_i));
+                break;
         }
         line(indent + 1, "R parallel " + num(f.r_par) + ", R perpendicular " + num(f.r_perp) +
                              ", reflectance F = (R par + R perp) / 2 = " + num(f.reflectance));
-        if (!dielectric) return;
+        if (f.formula != FresnelFormula::Dielectric) return;
         line(indent + 1, "transmittance 1 - F = " + num(1 - f.reflectance));
         if (r.refracts)
             line(indent + 1, "refracted direction " + vec(r.refracted));
@@ -279,12 +282,13 @@ std::string jnode(const Scene& scene, const RayTrace& r) {
             const FresnelTerms& t = r.fresnel;
             Object f;
             f.field("n1", jnum(t.eta_i)).field("n2", jnum(t.eta_t));
-            if (m.type == MaterialType::Conductor) f.field("k", jnum(t.k));
+            if (t.formula == FresnelFormula::Conductor) f.field("k", jnum(t.k));
             f.field("cos_i", jnum(t.cos_i));
-            if (m.type == MaterialType::Dielectric) f.field("sin2_t", jnum(t.sin_t2)).field("cos_t", jnum(t.cos_t));
+            if (t.formula == FresnelFormula::Dielectric)
+                f.field("sin2_t", jnum(t.sin_t2)).field("cos_t", jnum(t.cos_t));
             f.field("r_parallel", jnum(t.r_par)).field("r_perpendicular", jnum(t.r_perp));
             f.field("reflectance", jnum(t.reflectance));
-            if (m.type == MaterialType::Dielectric)
+            if (t.formula == FresnelFormula::Dielectric)
                 f.field("transmittance", jnum(1 - t.reflectance))
                     .field("refracted", r.refracts ? jvec(r.refracted) : "null")
                     .field("total_internal_reflection", jbool(r.tir));

@@ -22,6 +22,17 @@ std::string num(Real d) {
 
 std::string vec(const Vec3& v) { return num(v.x) + " " + num(v.y) + " " + num(v.z); }
 
+// What a material kind's mtl() writes with: "key value" lines.
+struct MtlLines {
+    std::string& text;
+    MtlLines& vec(const char* key, Vec3 v) { return line(key + (" " + rt::vec(v))); }
+    MtlLines& num(const char* key, Real x) { return line(key + (" " + rt::num(x))); }
+    MtlLines& line(const std::string& l) {
+        text += l + "\n";
+        return *this;
+    }
+};
+
 struct Bounds {
     Vec3 lo{INFINITY, INFINITY, INFINITY}, hi{-INFINITY, -INFINITY, -INFINITY};
     void add(const Vec3& p) {
@@ -65,25 +76,8 @@ std::string mtl_material(const MaterialDesc& m, size_t index) {
          "\n";
     s += "Ka " + vec(m.ambient) + "\n";
     s += "Kd " + vec(m.diffuse) + "\n";
-    switch (m.type) {
-        case MaterialType::Plain:
-            s += "Ks " + vec(m.specular) + "\nNs " + num(m.phong_exponent) + "\nillum 2\n";
-            break;
-        case MaterialType::Mirror:
-        case MaterialType::Conductor:
-            // MTL: illum 3 reflects with weight Ks.
-            s += "Ks " + vec(m.mirror) + "\nNs " + num(m.phong_exponent) + "\nillum 3\n";
-            if (m.type == MaterialType::Conductor) s += "Ni " + num(m.refraction_index) + "\n";
-            break;
-        case MaterialType::Dielectric: {
-            // MTL: illum 7 refracts with index Ni; Tf is the fraction transmitted per unit length.
-            const Vec3& c = m.absorption_coefficient;
-            const Vec3 tf{std::exp(-c.x), std::exp(-c.y), std::exp(-c.z)};
-            s += "Ks " + vec(m.specular) + "\nNs " + num(m.phong_exponent) + "\nNi " + num(m.refraction_index) +
-                 "\nTf " + vec(tf) + "\nillum 7\n";
-            break;
-        }
-    }
+    MtlLines lines{s};  // the kind's own lines (rt/materials/)
+    visit_material<void>(m.type, [&](auto k) { decltype(k)::mtl(m, lines); });
     return s + "\n";
 }
 

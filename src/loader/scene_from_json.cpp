@@ -4,10 +4,12 @@
 // here, once; errors name the file and the JSON pointer of the offending value.
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cctype>
 #include <charconv>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <sstream>
 #include <unordered_map>
@@ -320,6 +322,23 @@ private:
                             static_cast<Real>(xs[3 * i + 2])};
     }
 
+    // What a kind's read() (rt/shapes/shape.h, rt/materials/material.h) asks for, by
+    // key, with the loader's checks and messages.
+    struct FieldReader {
+        const Loader& l;
+        const json& obj;
+        const std::string& path;
+        Vec3 vertex(const char* key) const { return l.vertex_ref(obj, path, key); }
+        Real positive(const char* key) const { return l.positive(l.require(obj, path, key), path + "/" + key); }
+        Real non_negative(const char* key) const { return l.non_negative(l.require(obj, path, key), path + "/" + key); }
+        Vec3 nonzero_vec3(const char* key) const { return l.nonzero_vec3(l.require(obj, path, key), path + "/" + key); }
+        Vec3 color(const char* key) const { return l.color(l.require(obj, path, key), path + "/" + key); }
+        Vec3 color_or(const char* key, Vec3 fallback) const {
+            const json* v = l.find(obj, key);
+            return v ? l.color(*v, path + "/" + key) : fallback;
+        }
+    };
+
     void load_materials(const json& scene, const std::string& sp) {
         const json* ms = find(scene, "Materials");
         const std::string path = sp + "/Materials";
@@ -327,23 +346,34 @@ private:
         expect_object(*ms, path);
         check_keys(*ms, path, path, {"Material"});
         const std::string generic = path + "/Material";
+        // The keys every kind shares, then each kind's own (rt/materials/materials.h);
+        // the _type words, for the message.
+        std::vector<const char*> keys = {
+            "_id", "_type", "AmbientReflectance", "DiffuseReflectance", "SpecularReflectance", "PhongExponent"};
+        std::string words;
+        for_each_material([&](auto k) {
+            using M = decltype(k);
+            for (const char* key : M::kKeys)
+                if (std::none_of(keys.begin(), keys.end(), [&](const char* x) { return std::strcmp(x, key) == 0; }))
+                    keys.push_back(key);
+            if (M::kTypeWord) words += std::string(words.empty() ? "" : ", ") + M::kTypeWord;
+        });
+        if (const size_t last = words.rfind(", "); last != std::string::npos) words.replace(last, 2, " or ");
         for_each_item(*ms, path, "Material", [&](const json& m, const std::string& mp) {
-            check_keys(
-                m, mp, generic,
-                {"_id", "_type", "AmbientReflectance", "DiffuseReflectance", "SpecularReflectance", "PhongExponent",
-                 "MirrorReflectance", "RefractionIndex", "AbsorptionIndex", "AbsorptionCoefficient"});
+            check_keys(m, mp, generic, keys);
             MaterialDesc d;
+            d.type = MaterialType::Plain;
             if (const json* t = find(m, "_type")) {
                 const std::string& ty = text(*t, mp + "/_type");
-                if (ty == "mirror")
-                    d.type = MaterialType::Mirror;
-                else if (ty == "conductor")
-                    d.type = MaterialType::Conductor;
-                else if (ty == "dielectric")
-                    d.type = MaterialType::Dielectric;
-                else
-                    fail(mp + "/_type",
-                         "unknown material type '" + ty + "' (expected mirror, conductor or dielectric)");
+                bool known = false;
+                for_each_material([&](auto k) {
+                    using M = decltype(k);
+                    if (M::kTypeWord && ty == M::kTypeWord) {
+                        d.type = material_type_of<M>;
+                        known = true;
+                    }
+                });
+                if (!known) fail(mp + "/_type", "unknown material type '" + ty + "' (expected " + words + ")");
             }
             // Each Blinn-Phong coefficient is 0 0 0 when absent (spec 3: a material "can be
             // defined with" them; a matte wall needs no specular term).
@@ -351,22 +381,8 @@ private:
             if (const json* v = find(m, "DiffuseReflectance")) d.diffuse = color(*v, mp + "/DiffuseReflectance");
             if (const json* v = find(m, "SpecularReflectance")) d.specular = color(*v, mp + "/SpecularReflectance");
             if (const json* v = find(m, "PhongExponent")) d.phong_exponent = non_negative(*v, mp + "/PhongExponent");
-            // Mirrors and conductors need MirrorReflectance; dielectrics default to 1 1 1
-            // (the course's 2021 cornellbox_recursive glass has none).
-            if (d.type == MaterialType::Mirror || d.type == MaterialType::Conductor)
-                d.mirror = color(require(m, mp, "MirrorReflectance"), mp + "/MirrorReflectance");
-            else if (const json* v = find(m, "MirrorReflectance"))
-                d.mirror = color(*v, mp + "/MirrorReflectance");
-            else
-                d.mirror = {1, 1, 1};
-            if (d.type == MaterialType::Conductor || d.type == MaterialType::Dielectric)
-                d.refraction_index = positive(require(m, mp, "RefractionIndex"), mp + "/RefractionIndex");
-            if (d.type == MaterialType::Conductor)
-                d.absorption_index = non_negative(require(m, mp, "AbsorptionIndex"), mp + "/AbsorptionIndex");
-            if (d.type == MaterialType::Dielectric) {
-                if (const json* v = find(m, "AbsorptionCoefficient"))
-                    d.absorption_coefficient = color(*v, mp + "/AbsorptionCoefficient");
-            }
+            FieldReader r{*this, m, mp};
+            visit_material<void>(d.type, [&](auto k) { decltype(k)::read(r, d); });
             std::string id = std::to_string(out_.materials.size() + 1);
             if (const json* v = find(m, "_id")) id = std::to_string(integer(*v, mp + "/_id"));
             if (!material_ids_.emplace(id, static_cast<uint32_t>(out_.materials.size())).second)
@@ -465,17 +481,6 @@ private:
             mesh.indices.push_back(it->second);
         }
     }
-
-    // What a shape's read() (rt/shapes/shape.h) asks for, by key, with the loader's
-    // checks and messages.
-    struct FieldReader {
-        const Loader& l;
-        const json& obj;
-        const std::string& path;
-        Vec3 vertex(const char* key) const { return l.vertex_ref(obj, path, key); }
-        Real positive(const char* key) const { return l.positive(l.require(obj, path, key), path + "/" + key); }
-        Vec3 nonzero_vec3(const char* key) const { return l.nonzero_vec3(l.require(obj, path, key), path + "/" + key); }
-    };
 
     void load_objects(const json& scene, const std::string& sp) {
         const json* os = find(scene, "Objects");

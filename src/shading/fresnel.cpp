@@ -33,6 +33,7 @@ FresnelTerms fresnel_dielectric_terms(Real cos_i, Real eta_i, Real eta_t) {
 // a^2 + b^2 = sqrt((n^2 - k^2 - sin^2)^2 + 4 n^2 k^2).
 FresnelTerms fresnel_conductor_terms(Real cos_i, Real n, Real k) {
     FresnelTerms f;
+    f.formula = FresnelFormula::Conductor;
     f.eta_t = n;
     f.k = k;
     cos_i = std::clamp(cos_i, Real(0), Real(1));

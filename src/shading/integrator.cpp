@@ -12,8 +12,6 @@
 namespace rt {
 namespace {
 
-constexpr int kNoMedium = -1;
-
 inline Real max_component(Vec3 v) { return max_num(v.x, max_num(v.y, v.z)); }
 inline Real max_abs(Vec3 v) { return max_num(std::fabs(v.x), max_num(std::fabs(v.y), std::fabs(v.z))); }
 
@@ -181,7 +179,7 @@ struct Integrator {
         hp.front = dot(ray.dir, hp.surf.ng) < 0;
         hp.nf = hp.front ? hp.surf.ns : -hp.surf.ns;  // shading normal facing the incoming ray
         // Dielectrics are shaded only when hit from outside (reference-conventions.md).
-        hp.lit = s.setup.materials[hp.surf.material].type != MaterialType::Dielectric || hp.front;
+        hp.lit = hp.front || shaded_from_inside(s.setup.materials[hp.surf.material].type);
         if (rec) {
             rec->point = hp.p;
             rec->ng = hp.surf.ng;
@@ -231,8 +229,6 @@ struct Integrator {
     // the secondary rays and Beer's law.
     [[gnu::always_inline]] Vec3 bounce(const Ray& ray, const Hit& h, const HitPoint& hp, Vec3 color, int depth,
                                        int medium, Real weight, RayTrace* rec) const {
-        const Vec3 p = hp.p, nf = hp.nf;
-        const bool front = hp.front;
         const uint32_t mat_id = hp.surf.material;
         const Material& m = s.setup.materials[mat_id];
 
@@ -246,77 +242,40 @@ struct Integrator {
             rec->depth_limit = !(depth < s.setup.max_recursion_depth);
         }
         if (depth < s.setup.max_recursion_depth) {
-            const Real eps = s.setup.shadow_ray_epsilon;
-            const Real cos_i = -dot(ray.dir, nf);
-            // The reflected ray, spawned on the side the incoming ray came from.
-            auto reflected = [&] { return spawn_ray(p, nf, eps, normalize(ray.dir + nf * (2 * cos_i))); };
+            // The material's secondary rays (rt/materials/), traced in its order.
+            const ScatterIn in{ray,        hp.p, hp.nf, hp.front, -dot(ray.dir, hp.nf), s.setup.shadow_ray_epsilon,
+                               int(mat_id)};
+            ScatterOut out;
+            visit_material<void>(m.type, [&](auto k) { decltype(k)::scatter(m, in, out); });
+            if (rec) {
+                rec->has_fresnel = out.has_fresnel;
+                rec->fresnel = out.fresnel;
+                rec->tir = out.tir;
+                rec->refracts = out.refracts;
+                rec->refracted = out.refracted;
+            }
             // Adds factor * L(r) unless the ray's weight is below TraceOptions::min_weight.
             // Every path's weight at one depth sums to at most 1, so at most 1/min_weight
             // rays per depth are traced: dielectrics facing each other at MaxRecursionDepth
             // 50 stay bounded, while a skipped ray changes a pixel by less than min_weight
             // times its radiance.
-            auto secondary = [&](Vec3 factor, const Ray& r, int r_medium, RayKind kind) {
-                const Real w = weight * max_component(beer) * max_component(factor);
+            for (int i = 0; i < out.n; ++i) {
+                const ScatterOut::Secondary& r = out.rays[i];
+                const Real w = weight * max_component(beer) * max_component(r.factor);
                 const Real min_weight = static_cast<Real>(opt.min_weight);
                 RayTrace* child = nullptr;
                 if (rec) {
                     child = &rec->children.emplace_back();
-                    child->kind = kind;
+                    child->kind = r.kind;
                     child->depth = depth + 1;
-                    child->ray = r;
-                    child->factor = factor;
+                    child->ray = r.ray;
+                    child->factor = r.factor;
                     child->weight = w;
                     child->pruned = !(w >= min_weight);
                 }
-                if (!(w >= min_weight)) return;
-                ++(kind == RayKind::Refraction ? rays.refraction : rays.reflection);
-                color += factor * trace(r, depth + 1, r_medium, false, w, child);
-            };
-            switch (m.type) {
-                case MaterialType::Plain:
-                    // No secondary rays: MirrorReflectance on a material without _type is
-                    // ignored (reference-conventions.md, "Shading"; the akif_uslu scenes carry it).
-                    break;
-                case MaterialType::Mirror:
-                    secondary(m.mirror, reflected(), kNoMedium, RayKind::Reflection);
-                    break;
-                case MaterialType::Conductor: {
-                    const FresnelTerms f = fresnel_conductor_terms(cos_i, m.refraction_index, m.absorption_index);
-                    const Real fr = f.reflectance;
-                    if (rec) {
-                        rec->has_fresnel = true;
-                        rec->fresnel = f;
-                    }
-                    secondary(m.mirror * fr, reflected(), kNoMedium, RayKind::Reflection);
-                    break;
-                }
-                case MaterialType::Dielectric: {
-                    const int self = static_cast<int>(mat_id);
-                    const Real eta_i = front ? Real(1) : m.refraction_index;
-                    const Real eta_t = front ? m.refraction_index : Real(1);
-                    const FresnelTerms f = fresnel_dielectric_terms(cos_i, eta_i, eta_t);
-                    const Real fr = f.reflectance, cos_t = f.cos_t;
-                    // Inside this dielectric: the ray reflected off its inside, or refracted in.
-                    const int refl_medium = front ? kNoMedium : self;
-                    const int refr_medium = front ? self : kNoMedium;
-                    if (rec) {
-                        rec->has_fresnel = true;
-                        rec->fresnel = f;
-                        rec->tir = !(fr < 1) && eta_i > eta_t;
-                    }
-                    secondary(m.mirror * fr, reflected(), refl_medium, RayKind::Reflection);
-                    if (fr < 1) {
-                        const Real eta = eta_i / eta_t;
-                        const Vec3 t_dir = normalize(ray.dir * eta + nf * (eta * cos_i - cos_t));
-                        if (rec) {
-                            rec->refracts = true;
-                            rec->refracted = t_dir;
-                        }
-                        secondary(Vec3{1, 1, 1} * (1 - fr), spawn_ray(p, -nf, eps, t_dir), refr_medium,
-                                  RayKind::Refraction);
-                    }
-                    break;
-                }
+                if (!(w >= min_weight)) continue;
+                ++(r.kind == RayKind::Refraction ? rays.refraction : rays.reflection);
+                color += r.factor * trace(r.ray, depth + 1, r.medium, false, w, child);
             }
         }
         if (medium != kNoMedium) color = color * beer;

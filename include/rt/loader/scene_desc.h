@@ -8,37 +8,10 @@
 #include <vector>
 
 #include "rt/core/math.h"
+#include "rt/materials/materials.h"
 #include "rt/shapes/shapes.h"
 
 namespace rt {
-
-enum class MaterialType { Plain, Mirror, Conductor, Dielectric };
-
-// The type's `_type` word ("plain" for Plain, which has none).
-inline const char* material_type_name(MaterialType t) {
-    switch (t) {
-        case MaterialType::Plain:
-            return "plain";
-        case MaterialType::Mirror:
-            return "mirror";
-        case MaterialType::Conductor:
-            return "conductor";
-        case MaterialType::Dielectric:
-            return "dielectric";
-    }
-    return "plain";
-}
-
-struct MaterialDesc {
-    MaterialType type = MaterialType::Plain;
-    Vec3 ambient, diffuse, specular;
-    Real phong_exponent = 1;      // spec: PhongExponent; default 1 (reference-conventions.md)
-    Vec3 mirror;                  // MirrorReflectance; ignored for Plain materials
-    Real refraction_index = 1;    // conductors and dielectrics
-    Real absorption_index = 0;    // conductors: imaginary part k of the complex index
-    Vec3 absorption_coefficient;  // dielectrics: Beer's law c, per unit distance
-    std::string id;               // its _id, for --trace
-};
 
 struct CameraDesc {
     Vec3 position, gaze, up;                          // gaze is a direction (lookAt cameras: GazePoint - Position)

@@ -10,9 +10,13 @@ namespace rt {
 struct Scene;
 struct RayTrace;
 
+// Which Fresnel equations gave a FresnelTerms.
+enum class FresnelFormula { Dielectric, Conductor };
+
 // The Fresnel equations at one interface, with the intermediate terms a student checks
 // against their own (raytracer --trace prints them).
 struct FresnelTerms {
+    FresnelFormula formula = FresnelFormula::Dielectric;
     Real eta_i = 1, eta_t = 1;   // index of the incoming side and of the far side (a conductor: n of n + i k)
     Real k = 0;                  // a conductor's absorption index (the imaginary part); 0 for a dielectric
     Real cos_i = 0;              // cosine of the angle of incidence, clamped to [0, 1]
@@ -43,6 +47,8 @@ inline Real fresnel_conductor(Real cos_i, Real n, Real k) { return fresnel_condu
 inline Vec3 beer_attenuation(Vec3 c, Real distance) {
     return {std::exp(-c.x * distance), std::exp(-c.y * distance), std::exp(-c.z * distance)};
 }
+
+enum class RayKind { Camera, Reflection, Refraction, Shadow };
 
 // The one place secondary rays are born: the origin is pushed `epsilon` along
 // `offset_normal` (which the caller points to the side the ray leaves from).

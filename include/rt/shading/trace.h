@@ -15,7 +15,6 @@
 
 namespace rt {
 
-enum class RayKind { Camera, Reflection, Refraction, Shadow };
 const char* ray_kind_name(RayKind kind);  // "camera", "reflection", ...
 
 // One point light at a shaded point (Integrator::local).

@@ -1,0 +1,29 @@
+// A mirror (spec 2.6, _type "mirror"): reflects MirrorReflectance of the light.
+#pragma once
+#include "rt/materials/material.h"
+
+namespace rt {
+
+struct MirrorMaterial {
+    static constexpr const char* kName = "mirror";
+    static constexpr const char* kTypeWord = "mirror";
+    static constexpr const char* kKeys[] = {"MirrorReflectance"};
+    static constexpr bool kShadedFromInside = true;
+    static constexpr bool kRefracts = false;
+
+    template <class Reader>
+    static void read(Reader& r, MaterialDesc& d) {
+        d.mirror = r.color("MirrorReflectance");
+    }
+    static void scatter(const MaterialDesc& m, const ScatterIn& in, ScatterOut& out) {
+        out.add(m.mirror, in.reflected(), kNoMedium, RayKind::Reflection);
+    }
+
+    // MTL: illum 3 reflects with weight Ks.
+    template <class Mtl>
+    static void mtl(const MaterialDesc& m, Mtl& w) {
+        w.vec("Ks", m.mirror).num("Ns", m.phong_exponent).line("illum 3");
+    }
+};
+
+}  // namespace rt
