@@ -54,11 +54,7 @@ int main(int argc, char** argv) {
                    options.sphere_segments, 3, 4096)
         ->group(obj_export);
     app.add_flag("-q,--quiet", quiet, "print errors only");
-    app.add_option("files", files);
-    app.final_callback([&files] {
-        if (files.size() != 2)
-            cli::usage_error(files.size() < 2 ? "needs an INPUT and an OUTPUT file" : "too many files");
-    });
+    cli::add_two_files(app, files, "needs an INPUT and an OUTPUT file");
     if (const auto status = cli::parse(app, kProgram, argc, argv)) return *status;
 
     try {

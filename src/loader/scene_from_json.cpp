@@ -33,28 +33,14 @@ constexpr int kMaxRecursionDepthLimit = 10000;
 // keeps its boxes in float (max ~3.4e38), and squared distances must stay finite.
 constexpr double kMaxMagnitude = 1e30;
 
-const char* type_name(const json& v) {
-    switch (v.type()) {
-        case json::value_t::null:
-            return "null";
-        case json::value_t::object:
-            return "an object";
-        case json::value_t::array:
-            return "an array";
-        case json::value_t::string:
-            return "a string";
-        case json::value_t::boolean:
-            return "a boolean";
-        case json::value_t::discarded:
-            return "nothing";
-        case json::value_t::number_integer:
-        case json::value_t::number_unsigned:
-        case json::value_t::number_float:
-            return "a number";
-        case json::value_t::binary:
-            return "binary data";  // never parsed from text
-    }
-    return "a number";
+// What a JSON value is, for messages: nlohmann's type names ("object", "number", ...)
+// with an article.
+std::string type_name(const json& v) {
+    if (v.is_null()) return "null";
+    if (v.is_discarded()) return "nothing";
+    if (v.is_binary()) return "binary data";  // never parsed from text
+    const std::string name = v.type_name();
+    return (v.is_object() || v.is_array() ? "an " : "a ") + name;
 }
 
 class Loader {

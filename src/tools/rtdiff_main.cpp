@@ -300,11 +300,7 @@ int main(int argc, char** argv) {
                    [&o](const std::string& v) { o.camera = cli::whole_number("--camera", v, 1, 1 << 30); });
     app.add_flag("--only-common", o.only_common,
                  "two folders: compare the images in both and say nothing of those in one folder only");
-    app.add_option("files", files);
-    app.final_callback([&files] {
-        if (files.size() != 2)
-            cli::usage_error(files.size() < 2 ? "needs two images or two folders" : "too many files");
-    });
+    cli::add_two_files(app, files, "needs two images or two folders");
     if (const auto status = cli::parse(app, kProgram, argc, argv)) return *status;
 
     try {

@@ -95,6 +95,14 @@ CLI::Option* add_choice(CLI::App& app, const std::string& names, const std::stri
                      });
 }
 
+// Two file operands into `files`; fewer is the usage error `fewer`, more "too many files".
+inline void add_two_files(CLI::App& app, std::vector<std::string>& files, const std::string& fewer) {
+    app.add_option("files", files);
+    app.final_callback([&files, fewer] {
+        if (files.size() != 2) usage_error(files.size() < 2 ? fewer : "too many files");
+    });
+}
+
 // Prints "error: <message>" on stderr: every error line of the programs goes through it.
 void print_error(const std::string& message);
 

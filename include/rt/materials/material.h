@@ -41,13 +41,13 @@ constexpr int kNoMedium = -1;
 
 // A hit as scatter() sees it.
 struct ScatterIn {
-    Ray ray;         // the incoming ray
-    Vec3 p;          // the hit point
-    Vec3 nf;         // unit shading normal turned towards the incoming ray
-    bool front;      // the ray meets the outward side
-    Real cos_i;      // -dot(ray.dir, nf)
-    Real eps;        // ShadowRayEpsilon: secondary rays start this far off the surface
-    int self;        // this material's index (a medium for rays sent inside it)
+    Ray ray;     // the incoming ray
+    Vec3 p;      // the hit point
+    Vec3 nf;     // unit shading normal turned towards the incoming ray
+    bool front;  // the ray meets the outward side
+    Real cos_i;  // -dot(ray.dir, nf)
+    Real eps;    // ShadowRayEpsilon: secondary rays start this far off the surface
+    int self;    // this material's index (a medium for rays sent inside it)
 
     // The mirror reflection, spawned on the side the incoming ray came from.
     Ray reflected() const { return spawn_ray(p, nf, eps, normalize(ray.dir + nf * (2 * cos_i))); }

@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "rt/core/kind_list.h"
 #include "rt/shapes/plane.h"
 #include "rt/shapes/sphere.h"
 
@@ -23,22 +24,11 @@ namespace rt {
 enum class ShapeKind : uint32_t { Triangle, Sphere, Plane };
 
 template <class... S>
-struct ShapeList {
-    static constexpr size_t size = sizeof...(S);
-    template <template <class> class F>
-    using Tuple = std::tuple<F<S>...>;
-};
+using ShapeList = KindList<S...>;
 // The kinds after triangles, in ShapeKind order.
 using Shapes = ShapeList<Sphere, Plane>;
 
 // ---- Derived from the list ----------------------------------------------------------
-
-template <class S, class L>
-struct IndexIn;
-template <class S, class... T>
-struct IndexIn<S, ShapeList<S, T...>> : std::integral_constant<size_t, 0> {};
-template <class S, class U, class... T>
-struct IndexIn<S, ShapeList<U, T...>> : std::integral_constant<size_t, 1 + IndexIn<S, ShapeList<T...>>::value> {};
 
 // A kind's ShapeKind: 1 + its place in Shapes.
 template <class S>
@@ -51,13 +41,9 @@ inline constexpr ShapeKind kShapeKinds[] = {ShapeKind::Triangle, ShapeKind::Sphe
 static_assert(std::size(kShapeKinds) == kShapeKindCount, "kShapeKinds lists every kind, in order");
 
 // f(S{}) for each kind S of Shapes, in order (a default-constructed S as a tag).
-template <class F, class... S>
-void for_each_shape_in(ShapeList<S...>, F&& f) {
-    (f(S{}), ...);
-}
 template <class F>
 void for_each_shape(F&& f) {
-    for_each_shape_in(Shapes{}, f);
+    for_each_kind(Shapes{}, f);
 }
 
 // Unbounded kinds follow bounded ones (the BVH's ids are [0, bounded count)).
@@ -78,15 +64,9 @@ using ShapeVectors = Shapes::Tuple<VectorOf>;
 using ShapeDescVectors = Shapes::Tuple<DescVectorOf>;
 
 // f(S{}) for the kind S of `kind` (not Triangle, which the caller handles).
-template <class R, class F, class... S>
-R visit_shape_in(ShapeList<S...>, ShapeKind kind, F&& f) {
-    R r{};
-    ((kind == kind_of<S> ? (r = f(S{}), true) : false) || ...);
-    return r;
-}
 template <class R, class F>
 R visit_shape(ShapeKind kind, F&& f) {
-    return visit_shape_in<R>(Shapes{}, kind, f);
+    return visit_kind<R>(Shapes{}, size_t(kind) - 1, f);
 }
 
 // The kind's name as the scene file writes it (Objects/<key>); "Triangle" for kind 0.
