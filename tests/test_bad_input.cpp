@@ -1,7 +1,7 @@
 // Hostile input through the ./raytracer binary: every class of malformed scene or
 // PLY file gives one stderr line naming the file and the place, exit status 1, no
 // image (no temporary file either), and the good scene given after it on the same
-// command line renders the same bytes as it does alone. Complements test_cli.cpp
+// command line renders the same bytes as it does alone. Complements test_cli_bad_input.cpp
 // (CliBadInput), which covers the JSON classes it lists; this file adds the PLY
 // classes through the binary, the camera and size classes, number edge cases, and
 // the fuzzers' regression inputs (tests/fuzz/regressions).

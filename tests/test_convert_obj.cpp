@@ -1,24 +1,20 @@
-// The converters (rt/convert/convert.h, ./rtconvert): lossless XML <-> JSON round trips of
-// every official scene, OBJ (+MTL) import on OBJ files written here (quads, negative
-// indices, no normals, smoothing groups, with, without and with broken MTL files),
-// scene -> OBJ + MTL export, and the command line's errors.
+// The converters (rt/convert/convert.h), OBJ: import of OBJ (+MTL) files written here
+// (quads, negative indices, no normals, smoothing groups, with, without and with broken
+// MTL files; the camera and light it adds; bad input as one-line errors), and scene ->
+// OBJ + MTL export, read back with the importer.
 #include <gtest/gtest.h>
 
 // A build without pugixml or tinyobjloader (see mk/convert.mk) has none of this to test.
 #if !defined(RT_NO_XML) && !defined(RT_NO_OBJ)
 
-#include <nlohmann/json.hpp>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
-#include <limits>
-#include <sstream>
 #include <string>
-#include <type_traits>
 #include <vector>
 
+#include "convert_test_support.h"
 #include "rt/convert/convert.h"
 #include "rt/core/error.h"
 #include "rt/geometry/scene.h"
@@ -27,125 +23,9 @@
 #include "test_support.h"
 
 namespace fs = std::filesystem;
-using nlohmann::json;
+using namespace convert_test;
 
 namespace {
-
-// ---- SceneDesc equality, field by field ---------------------------------------------
-
-bool same(const rt::Vec3& a, const rt::Vec3& b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
-
-std::string str(const rt::Vec3& v) {
-    std::ostringstream s;
-    s.precision(17);
-    s << v.x << " " << v.y << " " << v.z;
-    return s.str();
-}
-
-std::string canonical(const std::string& path) {
-    std::error_code ec;
-    const fs::path p = fs::weakly_canonical(path, ec);
-    return ec ? path : p.string();
-}
-
-// Equal scenes. With `same_file` false the two were loaded from different files:
-// the paths in SceneDesc::path, MeshDesc::source and the warnings may differ, but PLY
-// sources must name the same file.
-::testing::AssertionResult same_scene(const rt::SceneDesc& a, const rt::SceneDesc& b, bool same_file = true) {
-    std::ostringstream why;
-    auto differ = [&](const std::string& what) { why << what << "; "; };
-#define RT_CMP_VEC(x) \
-    if (!same(a.x, b.x)) differ(#x ": " + str(a.x) + " vs " + str(b.x))
-#define RT_CMP(x) \
-    if (!(a.x == b.x)) differ(#x)
-    RT_CMP_VEC(background);
-    RT_CMP(shadow_ray_epsilon);
-    RT_CMP(intersection_test_epsilon);
-    RT_CMP(max_recursion_depth);
-    RT_CMP_VEC(ambient_light);
-    if (same_file) {
-        RT_CMP(path);
-        RT_CMP(warnings);
-    } else if (a.warnings.size() != b.warnings.size()) {
-        differ("warning count");
-    }
-#undef RT_CMP
-#undef RT_CMP_VEC
-    if (a.cameras.size() != b.cameras.size()) differ("camera count");
-    for (size_t i = 0; i < std::min(a.cameras.size(), b.cameras.size()); ++i) {
-        const rt::CameraDesc &x = a.cameras[i], &y = b.cameras[i];
-        if (!same(x.position, y.position) || !same(x.gaze, y.gaze) || !same(x.up, y.up) || x.left != y.left ||
-            x.right != y.right || x.bottom != y.bottom || x.top != y.top || x.near_distance != y.near_distance ||
-            x.width != y.width || x.height != y.height || x.image_name != y.image_name)
-            differ("camera " + std::to_string(i));
-    }
-    if (a.point_lights.size() != b.point_lights.size()) differ("light count");
-    for (size_t i = 0; i < std::min(a.point_lights.size(), b.point_lights.size()); ++i)
-        if (!same(a.point_lights[i].position, b.point_lights[i].position) ||
-            !same(a.point_lights[i].intensity, b.point_lights[i].intensity))
-            differ("light " + std::to_string(i));
-    if (a.materials.size() != b.materials.size()) differ("material count");
-    for (size_t i = 0; i < std::min(a.materials.size(), b.materials.size()); ++i) {
-        const rt::MaterialDesc &x = a.materials[i], &y = b.materials[i];
-        if (x.type != y.type || !same(x.ambient, y.ambient) || !same(x.diffuse, y.diffuse) ||
-            !same(x.specular, y.specular) || x.phong_exponent != y.phong_exponent || !same(x.mirror, y.mirror) ||
-            x.refraction_index != y.refraction_index || x.absorption_index != y.absorption_index ||
-            !same(x.absorption_coefficient, y.absorption_coefficient))
-            differ("material " + std::to_string(i));
-    }
-    if (a.meshes.size() != b.meshes.size()) differ("mesh count");
-    for (size_t i = 0; i < std::min(a.meshes.size(), b.meshes.size()); ++i) {
-        const rt::MeshDesc &x = a.meshes[i], &y = b.meshes[i];
-        bool positions = x.positions.size() == y.positions.size();
-        for (size_t k = 0; positions && k < x.positions.size(); ++k) positions = same(x.positions[k], y.positions[k]);
-        const bool sources = same_file
-                                 ? x.source == y.source
-                                 : (x.source.rfind("/Scene", 0) == 0 ? x.source == y.source
-                                                                     : canonical(x.source) == canonical(y.source));
-        if (x.material != y.material || x.shading != y.shading || !positions || x.indices != y.indices || !sources)
-            differ("mesh " + std::to_string(i) + " (" + x.source + " vs " + y.source + ")");
-    }
-    if (a.all<rt::Sphere>().size() != b.all<rt::Sphere>().size()) differ("sphere count");
-    for (size_t i = 0; i < std::min(a.all<rt::Sphere>().size(), b.all<rt::Sphere>().size()); ++i)
-        if (a.all<rt::Sphere>()[i].material != b.all<rt::Sphere>()[i].material ||
-            !same(a.all<rt::Sphere>()[i].center, b.all<rt::Sphere>()[i].center) ||
-            a.all<rt::Sphere>()[i].radius != b.all<rt::Sphere>()[i].radius)
-            differ("sphere " + std::to_string(i));
-    if (a.all<rt::Plane>().size() != b.all<rt::Plane>().size()) differ("plane count");
-    for (size_t i = 0; i < std::min(a.all<rt::Plane>().size(), b.all<rt::Plane>().size()); ++i)
-        if (a.all<rt::Plane>()[i].material != b.all<rt::Plane>()[i].material ||
-            !same(a.all<rt::Plane>()[i].point, b.all<rt::Plane>()[i].point) ||
-            !same(a.all<rt::Plane>()[i].normal, b.all<rt::Plane>()[i].normal))
-            differ("plane " + std::to_string(i));
-    if (why.str().empty()) return ::testing::AssertionSuccess();
-    return ::testing::AssertionFailure() << why.str();
-}
-
-// Loads a scene held in memory, or returns the error.
-struct Loaded {
-    rt::SceneDesc scene;
-    std::string error;
-};
-
-template <class F>
-Loaded attempt(F f) {
-    Loaded l;
-    try {
-        l.scene = f();
-    } catch (const rt::InputError& e) {
-        l.error = e.what();
-    }
-    return l;
-}
-
-std::vector<std::string> official_scenes(const std::string& sub, const std::string& ext) {
-    std::vector<std::string> out;
-    const std::string root = shared_dir();
-    if (root.empty()) return out;
-    for (const std::string& f : list_files(root + "/scenes/" + sub))
-        if (fs::path(f).extension() == ext) out.push_back(root + "/scenes/" + sub + "/" + f);
-    return out;
-}
 
 // ---- OBJ helpers -----------------------------------------------------------------
 
@@ -206,83 +86,6 @@ f 4 8 7 3
 )";
 
 }  // namespace
-
-// ---- Round trips of the official scenes ------------------------------------------------
-
-TEST(ConvertRoundTrip, EveryOfficialJsonSceneThroughXml) {
-    const std::vector<std::string> scenes = official_scenes("hw1", ".json");
-    if (scenes.empty()) GTEST_SKIP() << "../shared not found (set RT_SHARED_DIR)";
-    EXPECT_GE(scenes.size(), 20u);
-    for (const std::string& path : scenes) {
-        SCOPED_TRACE(path);
-        const std::string text = read_text(path);
-        const std::string xml = rt::json_to_xml_text(text, path);
-        const Loaded a = attempt([&] { return rt::parse_scene(text, path); });
-        const Loaded b = attempt([&] { return rt::parse_scene_xml(xml, path); });
-        EXPECT_EQ(a.error, b.error);  // scenes whose PLY files are missing fail alike
-        if (a.error.empty() && b.error.empty()) {
-            EXPECT_TRUE(same_scene(a.scene, b.scene));
-        }
-    }
-}
-
-TEST(ConvertRoundTrip, EveryOfficialXmlSceneThroughJson) {
-    const std::vector<std::string> scenes = official_scenes("xml2021", ".xml");
-    if (scenes.empty()) GTEST_SKIP() << "../shared not found (set RT_SHARED_DIR)";
-    EXPECT_EQ(scenes.size(), 13u);
-    for (const std::string& path : scenes) {
-        SCOPED_TRACE(path);
-        const std::string xml = read_text(path);
-        const std::string text = rt::xml_to_json_text(xml, path);
-        const Loaded a = attempt([&] { return rt::parse_scene_xml(xml, path); });
-        const Loaded b = attempt([&] { return rt::parse_scene(text, path); });
-        EXPECT_EQ(a.error, "");
-        EXPECT_EQ(a.error, b.error);
-        if (a.error.empty() && b.error.empty()) {
-            EXPECT_TRUE(same_scene(a.scene, b.scene));
-        }
-        // And once more around: the JSON is a fixed point.
-        EXPECT_EQ(rt::xml_to_json_text(rt::json_to_xml_text(text, path), path), text);
-    }
-}
-
-TEST(ConvertRoundTrip, FilesInAnotherFolderKeepTheirPlyFiles) {
-    TempDir tmp;
-    fs::create_directories(tmp / "src/ply");
-    fs::create_directories(tmp / "dst/deeper");
-    rt::write_ply(tmp / "src/ply/tri.ply", {0, 0, -2, 1, 0, -2, 0, 1, -2}, {0, 1, 2});
-    const json scene = json::parse(R"({"Scene": {
-        "Cameras": {"Camera": {"Position": "0 0 0", "Gaze": "0 0 -1", "Up": "0 1 0", "NearPlane": "-1 1 -1 1",
-                               "NearDistance": "1", "ImageResolution": "8 8", "ImageName": "a.png"}},
-        "Materials": {"Material": {"_id": "1", "AmbientReflectance": "1 1 1", "DiffuseReflectance": "1 1 1",
-                                   "SpecularReflectance": "0 0 0"}},
-        "Objects": {"Mesh": {"_id": "1", "Material": "1", "Faces": {"_plyFile": "ply/tri.ply"}}}}})");
-    write_text(tmp / "src/scene.json", scene.dump(2));
-    rt::convert_file(tmp / "src/scene.json", tmp / "dst/deeper/scene.xml");
-    rt::convert_file(tmp / "dst/deeper/scene.xml", tmp / "dst/scene.json");
-    EXPECT_TRUE(contains(read_text(tmp / "dst/deeper/scene.xml"), "plyFile=\"../../src/ply/tri.ply\""))
-        << read_text(tmp / "dst/deeper/scene.xml");
-    const rt::SceneDesc a = rt::load_scene(tmp / "src/scene.json");
-    EXPECT_TRUE(same_scene(a, rt::load_scene(tmp / "dst/deeper/scene.xml"), false));
-    EXPECT_TRUE(same_scene(a, rt::load_scene(tmp / "dst/scene.json"), false));
-    EXPECT_EQ(a.meshes.at(0).indices.size(), 3u);
-}
-
-TEST(ConvertRoundTrip, OfficialPlySceneThroughTheCommandLine) {
-    const std::string root = shared_dir();
-    if (root.empty()) GTEST_SKIP() << "../shared not found (set RT_SHARED_DIR)";
-    const std::string path = root + "/scenes/hw1/akif_uslu/ton_Roosendaal_smooth.json";
-    TempDir tmp;
-    RunResult r = run_program(rtconvert_path(), {"-q", path, tmp / "ton.xml"});
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_EQ(r.err, "");
-    r = run_program(rtconvert_path(), {"-q", tmp / "ton.xml", tmp / "ton.json"});
-    ASSERT_EQ(r.exit_code, 0) << r.err;
-    const rt::SceneDesc a = rt::load_scene(path);
-    EXPECT_TRUE(same_scene(a, rt::load_scene(tmp / "ton.xml"), false));
-    EXPECT_TRUE(same_scene(a, rt::load_scene(tmp / "ton.json"), false));
-}
-
 // ---- OBJ import ---------------------------------------------------------------------
 
 TEST(ObjImport, QuadsAreFanSplitAndNegativeIndicesResolved) {
@@ -643,111 +446,6 @@ TEST(ObjExport, OfficialXmlSceneExports) {
     const rt::SceneDesc src = rt::load_scene(path);
     const rt::SceneDesc back = (rt::convert_file(tmp / "cb.obj", tmp / "cb.json"), rt::load_scene(tmp / "cb.json"));
     EXPECT_EQ(triangle_count(back), triangle_count(src) + src.all<rt::Sphere>().size() * 2 * 48 * 23);
-}
-
-// ---- The command line ------------------------------------------------------------------
-
-TEST(ConvertCli, UsageAndHelp) {
-    RunResult r = run_program(rtconvert_path(), {"--help"});
-    EXPECT_EQ(r.exit_code, 0);
-    EXPECT_TRUE(contains(r.out, "usage: rtconvert"));
-    r = run_program(rtconvert_path(), {"--version"});
-    EXPECT_EQ(r.exit_code, 0);
-    for (const std::vector<std::string>& args :
-         std::vector<std::vector<std::string>>{{},
-                                               {"a.xml"},
-                                               {"a.xml", "b.json", "c.json"},
-                                               {"--bogus", "a.xml", "b.json"},
-                                               {"--shading", "wavy", "a.obj", "b.json"},
-                                               {"--size", "10", "a.obj", "b.json"},
-                                               {"--size"}}) {
-        SCOPED_TRACE(::testing::PrintToString(args));
-        r = run_program(rtconvert_path(), args);
-        EXPECT_EQ(r.exit_code, 2) << r.err;
-        EXPECT_TRUE(contains(r.err, "usage: rtconvert")) << r.err;
-    }
-}
-
-TEST(ConvertCli, BadInputIsOneLineAndWritesNothing) {
-    TempDir tmp;
-    write_text(tmp / "broken.xml", "<Scene>\n  <Cameras>\n</Scene>\n");
-    write_text(tmp / "broken.json", "{\"Scene\": [1, }");
-    write_text(tmp / "huge.json", "{\"Scene\": 1e999}");
-    write_text(tmp / "ok.json", "{\"Scene\": {}}");
-    write_text(tmp / "bad.obj", "v 0 0 0\nf 1 2 3\n");
-    struct Case {
-        std::vector<std::string> args;
-        std::string error;
-    };
-    for (const Case& c : std::vector<Case>{
-             {{"broken.xml", "out.json"}, "broken.xml: line 3, column 3: start-end tags mismatch"},
-             {{"broken.json", "out.xml"}, "broken.json: parse error at line 1, column 15: "},
-             {{"huge.json", "out.xml"},
-              "huge.json: line 1, column 11: number overflow parsing '1e999' (not a finite number)"},
-             {{"bad.obj", "out.json"},
-              "bad.obj: line 2: vertex index out of range in 'f 1 2 3' (the file has 1 vertices)"},
-             {{"missing.xml", "out.json"}, "missing.xml: cannot open: No such file or directory"},
-             {{"ok.json", "out.txt"}, "out.txt: unknown output format (the name must end in .json, .xml or .obj)"},
-             {{"ok.json", "ok.json"}, "ok.json: is the input file; choose another output name"},
-             {{"ok.json", "no/such/dir/out.xml"}, "no/such/dir/out.xml: cannot write: No such file or directory"},
-         }) {
-        SCOPED_TRACE(c.error);
-        const RunResult r = run_program(rtconvert_path(), c.args, tmp.path());
-        EXPECT_EQ(r.exit_code, 1);
-        const std::vector<std::string> lines = split_lines(r.err);
-        ASSERT_EQ(lines.size(), 1u) << r.err;
-        EXPECT_EQ(lines[0].substr(0, c.error.size() + 7), "error: " + c.error);
-        EXPECT_EQ(list_files(tmp.path()),
-                  (std::vector<std::string>{"bad.obj", "broken.json", "broken.xml", "huge.json", "ok.json"}));
-    }
-}
-
-// One function formats JSON parse errors for both programs (rt/loader/scene_tree.h): a number
-// beyond the double range gets the same one-line message, with its line and column,
-// from the renderer and from the converter.
-TEST(ConvertCli, NumberOverflowIsTheSameMessageInBothPrograms) {
-    TempDir tmp;
-    write_text(tmp / "huge.json", "{\"Scene\": {\n  \"ShadowRayEpsilon\": 1e999}}\n");
-    const std::string expected =
-        "error: huge.json: line 2, column 23: number overflow parsing '1e999' (not a finite number)";
-    const RunResult render = run_raytracer({"huge.json"}, tmp.path());
-    const RunResult convert = run_program(rtconvert_path(), {"huge.json", "out.xml"}, tmp.path());
-    for (const RunResult* r : {&render, &convert}) {
-        EXPECT_EQ(r->exit_code, 1);
-        EXPECT_EQ(split_lines(r->err), std::vector<std::string>{expected}) << r->err;
-    }
-    EXPECT_EQ(list_files(tmp.path()), std::vector<std::string>{"huge.json"});
-}
-
-// ---- Our own scenes ---------------------------------------------------------------------
-
-TEST(OwnScenes, EveryOneLoadsAndRenders) {
-    // scenes/ of this repository: from the folder the tests run in, or one above it.
-    std::string dir;
-    for (const char* up : {"", "../", "../../"})
-        if (file_exists(std::string(up) + "scenes/showcase.json")) {
-            dir = std::string(up) + "scenes";
-            break;
-        }
-    ASSERT_FALSE(dir.empty()) << "scenes/ not found from " << fs::current_path();
-    std::vector<std::string> scenes;
-    for (const std::string& f : list_files(dir))
-        if (fs::path(f).extension() == ".json") scenes.push_back(dir + "/" + f);
-    EXPECT_GE(scenes.size(), 4u);
-    for (const std::string& path : scenes) {
-        SCOPED_TRACE(path);
-        rt::SceneDesc d = rt::load_scene(path);
-        EXPECT_TRUE(d.warnings.empty()) << d.warnings.at(0);
-        for (rt::CameraDesc& c : d.cameras) {
-            const int longest = std::max(c.width, c.height);
-            c.width = std::max(1, c.width * 40 / longest);
-            c.height = std::max(1, c.height * 40 / longest);
-        }
-        const rt::Scene s = rt::build_scene(d);
-        EXPECT_EQ(s.report.degenerate_triangles, 0u);
-        const rt::Image img = rt::render(s, 0, rt::RenderOptions{});
-        EXPECT_GT(*std::max_element(img.rgb.begin(), img.rgb.end()), 100);
-    }
 }
 
 #endif  // !defined(RT_NO_XML) && !defined(RT_NO_OBJ)

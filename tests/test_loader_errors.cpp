@@ -1,0 +1,261 @@
+// Tests for the JSON scene loader (include/rt/loader/load_scene.h, src/loader/), bad input:
+// every class must throw rt::InputError whose one-line message starts with the file path
+// and names the JSON pointer of the offending value.
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+
+#include <exception>
+#include <string>
+
+#include "loader_test_support.h"
+#include "rt/core/error.h"
+#include "rt/loader/load_scene.h"
+#include "rt/loader/scene_desc.h"
+
+namespace {
+
+using namespace loader_test;
+
+// --- bad input --------------------------------------------------------------------------
+
+// Parses `text`, expecting rt::InputError "<path>: ...<pointer>...". `also` must appear too.
+void expect_error(const std::string& text, const std::string& pointer, const std::string& also = "") {
+    try {
+        const rt::SceneDesc d = parse(text);
+        ADD_FAILURE() << "no error; expected one at " << pointer;
+    } catch (const rt::InputError& e) {
+        const std::string msg = e.what();
+        EXPECT_EQ(msg.rfind(kPath + ": ", 0), 0u) << "message must start with the file path: " << msg;
+        EXPECT_NE(msg.find(pointer), std::string::npos) << "message must contain " << pointer << ": " << msg;
+        if (!also.empty()) {
+            EXPECT_NE(msg.find(also), std::string::npos) << "message must contain " << also << ": " << msg;
+        }
+        EXPECT_EQ(msg.find('\n'), std::string::npos) << "one line: " << msg;
+    } catch (const std::exception& e) {
+        ADD_FAILURE() << "wrong exception type: " << e.what();
+    }
+}
+
+const std::string kCam = "/Scene/Cameras/Camera";
+
+TEST(LoaderErrors, MissingScene) {
+    expect_error(R"({"Cameras": {}})", "/Scene");
+    expect_error(R"([1, 2])", "/");
+    expect_error(R"({"Scene": "text"})", "/Scene");
+}
+
+TEST(LoaderErrors, MissingCameras) {
+    json j = sample();
+    j["Scene"].erase("Cameras");
+    expect_error(j.dump(), "/Scene/Cameras");
+}
+
+TEST(LoaderErrors, MissingCameraPosition) {
+    json j = sample();
+    j["Scene"]["Cameras"]["Camera"].erase("Position");
+    expect_error(j.dump(), kCam + "/Position");
+}
+
+TEST(LoaderErrors, WrongType) {
+    json j = sample();
+    j["Scene"]["Cameras"]["Camera"]["Position"] = {{"x", "0"}};
+    expect_error(j.dump(), kCam + "/Position");
+    j = sample();
+    j["Scene"]["Cameras"]["Camera"]["ImageName"] = 5;
+    expect_error(j.dump(), kCam + "/ImageName");
+    j = sample();
+    j["Scene"]["Objects"]["Sphere"]["Radius"] = true;
+    expect_error(j.dump(), "/Scene/Objects/Sphere/Radius");
+    j = sample();
+    j["Scene"]["Objects"]["Sphere"] = "not an object";
+    expect_error(j.dump(), "/Scene/Objects/Sphere");
+}
+
+TEST(LoaderErrors, BadNumbers) {
+    const std::pair<const char*, const char*> cases[] = {
+        {"1 2 x", "non-numeric"},  {"1 2", "too short"},    {"1 2 3 4", "too long"},
+        {"nan 0 0", "NaN"},        {"inf 0 0", "infinite"}, {"0 -inf 0", "infinite"},
+        {"1e999 0 0", "overflow"}, {"", "empty"},           {"1,2,3", "commas"}};
+    for (const auto& [value, why] : cases) {
+        SCOPED_TRACE(std::string(why) + ": \"" + value + "\"");
+        json j = sample();
+        j["Scene"]["Cameras"]["Camera"]["Position"] = value;
+        expect_error(j.dump(), kCam + "/Position");
+    }
+    json j = sample();
+    j["Scene"]["Objects"]["Sphere"]["Radius"] = "inf";
+    expect_error(j.dump(), "/Scene/Objects/Sphere/Radius");
+    j = sample();
+    j["Scene"]["Lights"]["PointLight"]["Intensity"] = "1000 nan 1000";
+    expect_error(j.dump(), "/Scene/Lights/PointLight/Intensity");
+    j = sample();
+    j["Scene"]["VertexData"]["_data"] = "0 0 0 1 1 x";
+    expect_error(j.dump(), "/Scene/VertexData");
+}
+
+TEST(LoaderErrors, BadResolution) {
+    for (const char* res : {"0 800", "800 0", "-800 800", "800 -1", "800.5 800", "800"}) {
+        SCOPED_TRACE(res);
+        json j = sample();
+        j["Scene"]["Cameras"]["Camera"]["ImageResolution"] = res;
+        expect_error(j.dump(), kCam + "/ImageResolution");
+    }
+}
+
+TEST(LoaderErrors, TooLargeResolutionRefusedBeforeAllocating) {
+    // 10^10 pixels (30 GB of RGB) must be refused at load time.
+    for (const char* res : {"100000 100000", "2147483647 2", "1e15 1"}) {
+        SCOPED_TRACE(res);
+        json j = sample();
+        j["Scene"]["Cameras"]["Camera"]["ImageResolution"] = res;
+        expect_error(j.dump(), kCam + "/ImageResolution");
+    }
+}
+
+TEST(LoaderErrors, BadCameraVectors) {
+    json j = sample();
+    j["Scene"]["Cameras"]["Camera"]["Gaze"] = "0 0 0";
+    expect_error(j.dump(), kCam + "/Gaze");
+    j = sample();
+    j["Scene"]["Cameras"]["Camera"]["Up"] = "0 0 0";
+    expect_error(j.dump(), kCam + "/Up");
+    // Up parallel (and anti-parallel) to the gaze (0, 0, -1): no image orientation.
+    for (const char* up : {"0 0 2", "0 0 -1"}) {
+        SCOPED_TRACE(up);
+        j = sample();
+        j["Scene"]["Cameras"]["Camera"]["Up"] = up;
+        try {
+            parse(j.dump());
+            ADD_FAILURE() << "Up parallel to Gaze accepted";
+        } catch (const rt::InputError& e) {
+            const std::string msg = e.what();
+            EXPECT_EQ(msg.rfind(kPath + ": ", 0), 0u) << msg;
+            EXPECT_TRUE(msg.find(kCam + "/Up") != std::string::npos || msg.find(kCam + "/Gaze") != std::string::npos)
+                << msg;
+        }
+    }
+    // lookAt: GazePoint equal to Position.
+    j = sample();
+    j["Scene"]["Cameras"]["Camera"] = {
+        {"_type", "lookAt"}, {"Position", "1 2 3"}, {"GazePoint", "1 2 3"},     {"Up", "0 1 0"},
+        {"FovY", "45"},      {"NearDistance", "1"}, {"ImageResolution", "8 8"}, {"ImageName", "a.png"}};
+    expect_error(j.dump(), kCam + "/GazePoint");
+    // FovY out of range.
+    j["Scene"]["Cameras"]["Camera"]["GazePoint"] = "0 0 0";
+    j["Scene"]["Cameras"]["Camera"]["FovY"] = "180";
+    expect_error(j.dump(), kCam + "/FovY");
+    j["Scene"]["Cameras"]["Camera"]["FovY"] = "0";
+    expect_error(j.dump(), kCam + "/FovY");
+}
+
+TEST(LoaderErrors, VertexIdsOutOfRange) {
+    // VertexData has 9 vertices: valid ids are 1..9.
+    for (const char* faces : {"3 1 2 1 3 0", "3 1 2 1 3 10", "3 1 2 1 3 -1", "3 1 2 1 3 2.5"}) {
+        SCOPED_TRACE(faces);
+        json j = sample();
+        j["Scene"]["Objects"]["Mesh"]["Faces"]["_data"] = faces;
+        expect_error(j.dump(), "/Scene/Objects/Mesh/Faces/_data");
+    }
+    json j = sample();
+    j["Scene"]["Objects"]["Triangle"]["Indices"] = "5 6 10";
+    expect_error(j.dump(), "/Scene/Objects/Triangle/Indices");
+    j = sample();
+    j["Scene"]["Objects"]["Sphere"]["Center"] = "0";
+    expect_error(j.dump(), "/Scene/Objects/Sphere/Center");
+    j = sample();
+    j["Scene"]["Objects"]["Plane"]["Point"] = "10";
+    expect_error(j.dump(), "/Scene/Objects/Plane/Point");
+}
+
+TEST(LoaderErrors, MaterialIdOutOfRange) {
+    json j = sample();
+    j["Scene"]["Objects"]["Sphere"]["Material"] = "2";
+    expect_error(j.dump(), "/Scene/Objects/Sphere/Material");
+    j = sample();
+    j["Scene"]["Objects"]["Mesh"]["Material"] = "0";
+    expect_error(j.dump(), "/Scene/Objects/Mesh/Material");
+    j = sample();
+    j["Scene"]["Objects"]["Triangle"].erase("Material");
+    expect_error(j.dump(), "/Scene/Objects/Triangle/Material");
+}
+
+TEST(LoaderErrors, FaceCountNotMultipleOfThree) {
+    json j = sample();
+    j["Scene"]["Objects"]["Mesh"]["Faces"]["_data"] = "3 1 2 1 3";
+    expect_error(j.dump(), "/Scene/Objects/Mesh/Faces/_data");
+    j = sample();
+    j["Scene"]["Objects"]["Triangle"]["Indices"] = "5 6";
+    expect_error(j.dump(), "/Scene/Objects/Triangle/Indices");
+}
+
+TEST(LoaderErrors, SphereRadius) {
+    for (const char* r : {"0", "-0.3", "-0"}) {
+        SCOPED_TRACE(r);
+        json j = sample();
+        j["Scene"]["Objects"]["Sphere"]["Radius"] = r;
+        expect_error(j.dump(), "/Scene/Objects/Sphere/Radius");
+    }
+}
+
+TEST(LoaderErrors, UnknownMaterialType) {
+    json j = sample();
+    j["Scene"]["Materials"]["Material"]["_type"] = "glass";
+    expect_error(j.dump(), "/Scene/Materials/Material/_type", "glass");
+}
+
+TEST(LoaderErrors, FacesWithoutData) {
+    json j = sample();
+    j["Scene"]["Objects"]["Mesh"]["Faces"].erase("_data");
+    expect_error(j.dump(), "/Scene/Objects/Mesh/Faces");
+}
+
+TEST(LoaderErrors, MissingPlyFile) {
+    // PLY paths are relative to the scene file's folder.
+    json j = sample();
+    j["Scene"]["Objects"]["Mesh"]["Faces"] = {{"_plyFile", "meshes/nowhere.ply"}};
+    expect_error(j.dump(), "/Scene/Objects/Mesh/Faces", "/nonexistent/rt_loader_test/meshes/nowhere.ply");
+}
+
+TEST(LoaderErrors, NegativeMaxRecursionDepth) {
+    json j = sample();
+    j["Scene"]["MaxRecursionDepth"] = "-1";
+    expect_error(j.dump(), "/Scene/MaxRecursionDepth");
+    j["Scene"]["MaxRecursionDepth"] = "2.5";
+    expect_error(j.dump(), "/Scene/MaxRecursionDepth");
+}
+
+TEST(LoaderErrors, ArrayElementPathsUseZeroBasedIndex) {
+    json j = sample();
+    json s1 = j["Scene"]["Objects"]["Sphere"];
+    json s2 = s1;
+    s2["_id"] = "2";
+    s2["Radius"] = "-1";
+    j["Scene"]["Objects"]["Sphere"] = json::array({s1, s2});
+    expect_error(j.dump(), "/Scene/Objects/Sphere/1/Radius");
+
+    j = sample();
+    json c1 = j["Scene"]["Cameras"]["Camera"];
+    json c0 = c1;
+    c0.erase("Position");
+    j["Scene"]["Cameras"]["Camera"] = json::array({c0, c1});
+    expect_error(j.dump(), "/Scene/Cameras/Camera/0/Position");
+
+    j = sample();
+    json m = j["Scene"]["Objects"]["Mesh"];
+    json m2 = m;
+    m2["Faces"]["_data"] = "1 2 99";
+    j["Scene"]["Objects"]["Mesh"] = json::array({m, m, m2});
+    expect_error(j.dump(), "/Scene/Objects/Mesh/2/Faces/_data");
+}
+
+TEST(LoaderErrors, NegativeColours) {
+    json j = sample();
+    j["Scene"]["Lights"]["AmbientLight"] = "-1 0 0";
+    expect_error(j.dump(), "/Scene/Lights/AmbientLight");
+    j = sample();
+    j["Scene"]["Materials"]["Material"]["DiffuseReflectance"] = "0.5 -0.5 0.5";
+    expect_error(j.dump(), "/Scene/Materials/Material/DiffuseReflectance");
+}
+
+}  // namespace
