@@ -26,15 +26,13 @@ Vec3 random_unit(Rng& rng) {
 }
 
 uint32_t global_id(const rt::Scene& s, const rt::Hit& h) {
-    switch (h.kind) {
-        case rt::ShapeKind::Triangle:
-            return h.index;
-        case rt::ShapeKind::Sphere:
-            return static_cast<uint32_t>(s.geometry.triangles.size()) + h.index;
-        case rt::ShapeKind::Plane:
-            return static_cast<uint32_t>(s.geometry.triangles.size() + s.geometry.all<rt::Sphere>().size()) + h.index;
-    }
-    return ~0u;
+    uint32_t id = static_cast<uint32_t>(s.geometry.triangles.size()), found = h.index;
+    rt::for_each_shape([&](auto k) {
+        using S = decltype(k);
+        if (h.kind == rt::kind_of<S>) found = id + h.index;
+        id += static_cast<uint32_t>(s.geometry.all<S>().size());
+    });
+    return found;
 }
 
 namespace {
@@ -78,26 +76,19 @@ Answer brute_closest(const rt::Scene& s, const rt::Ray& r, Real tmin, Real tmax,
             std::copy(w, w + 3, a.w);
         }
     }
-    for (size_t i = 0; i < s.geometry.all<rt::Sphere>().size(); ++i, ++gid) {
-        Real t;
-        if (rt::intersect_sphere(r, s.geometry.all<rt::Sphere>()[i].center, s.geometry.all<rt::Sphere>()[i].radius,
-                                 tmin, tmax, t) &&
-            t < a.t) {
-            a.found = true;
-            a.t = t;
-            a.gid = gid;
+    // Every other kind of the registry, by its own ray test, in id order.
+    rt::for_each_shape([&](auto k) {
+        using S = decltype(k);
+        for (const S& shape : s.geometry.all<S>()) {
+            Real t;
+            if (shape.intersect(r, tmin, tmax, t) && t < a.t) {
+                a.found = true;
+                a.t = t;
+                a.gid = gid;
+            }
+            ++gid;
         }
-    }
-    for (size_t i = 0; i < s.geometry.all<rt::Plane>().size(); ++i, ++gid) {
-        Real t;
-        if (rt::intersect_plane(r, s.geometry.all<rt::Plane>()[i].point, s.geometry.all<rt::Plane>()[i].normal, tmin,
-                                tmax, t) &&
-            t < a.t) {
-            a.found = true;
-            a.t = t;
-            a.gid = gid;
-        }
-    }
+    });
     return a;
 }
 
@@ -111,11 +102,11 @@ bool brute_any(const rt::Scene& s, const rt::Ray& r, Real tmin, Real tmax) {
                             : rt::intersect_triangle(p, a, b, c, tmin, tmax, t, w))
             return true;
     }
-    for (const rt::Sphere& sp : s.geometry.all<rt::Sphere>())
-        if (rt::intersect_sphere(r, sp.center, sp.radius, tmin, tmax, t)) return true;
-    for (const rt::Plane& pl : s.geometry.all<rt::Plane>())
-        if (rt::intersect_plane(r, pl.point, pl.normal, tmin, tmax, t)) return true;
-    return false;
+    bool any = false;
+    rt::for_each_shape([&](auto k) {
+        for (const auto& shape : s.geometry.all<decltype(k)>()) any = any || shape.intersect(r, tmin, tmax, t);
+    });
+    return any;
 }
 
 std::string describe(const rt::Ray& r, Real tmin, Real tmax) {
@@ -141,19 +132,30 @@ rt::Box prim_bounds(const rt::Scene& s, uint32_t id) {
     PointBox b;
     if (id < s.geometry.triangles.size()) {
         for (uint32_t v : s.geometry.triangles[id].v) b.extend(s.geometry.positions[v]);
-    } else {
-        const rt::Sphere& sp = s.geometry.all<rt::Sphere>()[id - s.geometry.triangles.size()];
-        b.extend(sp.center - Vec3{sp.radius, sp.radius, sp.radius});
-        b.extend(sp.center + Vec3{sp.radius, sp.radius, sp.radius});
+        return b.box;
     }
-    return b.box;
+    // The bounded kinds follow the triangles in id order; each kind's own bounds.
+    size_t first = s.geometry.triangles.size();
+    rt::Box box;
+    rt::for_each_shape([&](auto k) {
+        using S = decltype(k);
+        if constexpr (S::kBounded) {
+            const std::vector<S>& all = s.geometry.all<S>();
+            if (id >= first && id - first < all.size()) box = all[id - first].bounds();
+            first += all.size();
+        }
+    });
+    return box;
 }
 
 }  // namespace
 
 void check_structure(const rt::Scene& s) {
     const rt::Bvh& bvh = s.accel.bvh;
-    const size_t n = s.geometry.triangles.size() + s.geometry.all<rt::Sphere>().size();
+    size_t n = s.geometry.triangles.size();
+    rt::for_each_shape([&](auto k) {
+        if constexpr (decltype(k)::kBounded) n += s.geometry.all<decltype(k)>().size();
+    });
     ASSERT_EQ(bvh.prims.size(), n);
     if (n == 0) {
         EXPECT_TRUE(bvh.nodes.empty());
