@@ -200,7 +200,7 @@ struct Integrator {
     // `weight` is what this ray's radiance is multiplied by in the pixel. `rec`: this
     // ray's node of the recorded tree (its kind, factor and weight set), or null (renders).
     // trace() and bounce() are inlined into their callers, so that a secondary ray costs
-    // one call (shade()) as before they were split out (docs/performance.md, session 14).
+    // one call (shade()) as before they were split out (docs/performance.md).
     [[gnu::always_inline]] Vec3 trace(const Ray& ray, int depth, int medium, bool primary, Real weight,
                                       RayTrace* rec) const {
         Hit h;

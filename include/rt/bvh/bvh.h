@@ -1,6 +1,6 @@
 // An 8-wide BVH in one flat array of 256-byte nodes, built directly by binned
-// SAH and then collapsed into fuller nodes (bvh_build.cpp): one SIMD box test
-// serves eight children. Rays through large
+// SAH and then collapsed into fuller nodes (src/bvh/bvh_build.cpp, bvh_collapse.cpp):
+// one SIMD box test serves eight children. Rays through large
 // meshes mostly wait for node loads; a wider node means fewer levels, so fewer
 // dependent loads per ray, and the eight float boxes fill one AVX register as
 // Embree's 8-wide nodes do (docs/performance.md). Bounds are stored as float,
@@ -31,7 +31,7 @@ float round_up_to_float(Real x);
 // BuildBox for each primitive the builder sorts (a Box's corners around its id);
 // BvhNode's child slots (kWidth boxes, structure of arrays, for the SIMD slab
 // test); and, inside the builder only, Box8, a box held in one AVX register as
-// (lo, -hi) so that one min instruction extends both corners (bvh_build.cpp).
+// (lo, -hi) so that one min instruction extends both corners (box8.h).
 
 // An axis-aligned box in float: bounds rounded outwards contain Real geometry
 // exactly. The default box is empty (lo = +inf, hi = -inf).
@@ -158,7 +158,7 @@ struct BvhBuildOptions {
     uint32_t block = 0;
     int bins = 16;         // SAH bins per axis for large ranges (2..16; small ranges use fewer)
     bool sah = true;       // false: object-median splits only (fastest build, slower rays)
-    bool collapse = true;  // false: keep the top-down tree's sparse bottom nodes (bvh_build.cpp)
+    bool collapse = true;  // false: keep the top-down tree's sparse bottom nodes (bvh_collapse.cpp)
     // Leaf-order vertices (scene.h, LeafVertices) in double for scenes of up to
     // this many primitives (72 bytes a triangle, at most 9 MiB: a copy that stays
     // in cache), in float above (docs/performance.md); 0: never double. Double builds
@@ -171,7 +171,7 @@ struct BvhBuildOptions {
     // many triangles as one leaf test takes (kLeafBlock), but at most four where they
     // come from the double copy: eight doubles a coordinate fill a 64-byte line, twice
     // the bytes of eight floats, and leaves priced as if they held four made the small
-    // scenes' secondary rays faster (docs/performance.md, session 16).
+    // scenes' secondary rays faster (docs/performance.md).
     uint32_t block_for(size_t n) const {
         if (block != 0) return std::min<uint32_t>(block, 16);
         return double_copies(n) ? std::min<uint32_t>(kLeafBlock, 4) : kLeafBlock;
