@@ -166,7 +166,7 @@ Real copied(const T* copy, uint32_t first, uint32_t n, uint32_t j, int k, int ax
     return Real(copy[rt::LeafVertices::at(first, n, j, k, axis)]);
 }
 
-// The leaf-order copy (scene.h, LeafVertices) is in double for scenes of up to
+// The leaf-order copy (rt/geometry/leaf_vertices.h) is in double for scenes of up to
 // options.double_copy_max primitives and serves every leaf of triangles, in float
 // above and serves exactly the leaves of float triangles; it holds their vertices,
 // and exists when it serves some leaf. Returns how many leaves it serves and how

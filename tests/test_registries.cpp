@@ -44,7 +44,8 @@ TEST(MaterialRegistry, EveryTypeWordLoadsAsItsKind) {
         EXPECT_TRUE(names.insert(M::kName).second) << M::kName;
         if (!M::kTypeWord) {
             ++without_word;
-            const rt::SceneDesc d = rt::parse_scene(scene_with_material(R"({"DiffuseReflectance": "1 1 1"})"), "m.json");
+            const rt::SceneDesc d =
+                rt::parse_scene(scene_with_material(R"({"DiffuseReflectance": "1 1 1"})"), "m.json");
             EXPECT_EQ(d.materials.at(0).type, rt::material_type_of<M>) << M::kName;
             return;
         }

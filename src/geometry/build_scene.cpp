@@ -209,7 +209,7 @@ size_t copy_leaves(const Geometry& g, Bvh& bvh, T* out) {
     return first + second;
 }
 
-// The leaf-order vertices (LeafVertices, scene.h): in double for small scenes; in
+// The leaf-order vertices (rt/geometry/leaf_vertices.h): in double for small scenes; in
 // float otherwise, written into `storage` once the BVH build is done with the
 // boxes there (sized for both), and kept only when some leaf is served.
 void copy_leaf_vertices(Scene& s, ReusableStorage& storage, const BvhBuildOptions& options) {

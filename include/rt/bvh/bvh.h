@@ -159,7 +159,7 @@ struct BvhBuildOptions {
     int bins = 16;         // SAH bins per axis for large ranges (2..16; small ranges use fewer)
     bool sah = true;       // false: object-median splits only (fastest build, slower rays)
     bool collapse = true;  // false: keep the top-down tree's sparse bottom nodes (bvh_collapse.cpp)
-    // Leaf-order vertices (scene.h, LeafVertices) in double for scenes of up to
+    // Leaf-order vertices (rt/geometry/leaf_vertices.h) in double for scenes of up to
     // this many primitives (72 bytes a triangle, at most 9 MiB: a copy that stays
     // in cache), in float above (docs/performance.md); 0: never double. Double builds
     // only: with Real = float the copy is always in float.

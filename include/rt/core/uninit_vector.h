@@ -42,7 +42,7 @@ using UninitVector = std::vector<T, DefaultInitAllocator<T>>;
 // before, which is gone from then on. Nothing is ever read through another type
 // than the one it was written as; only the bytes (and their touched pages) are
 // reused. build_scene holds the BVH build's primitive boxes here, then the
-// leaf-order vertices (LeafVertices, scene.h).
+// leaf-order vertices (rt/geometry/leaf_vertices.h).
 class ReusableStorage {
 public:
     ReusableStorage() = default;

@@ -1,7 +1,7 @@
 // What every kind of shape shares: the fields of its scene-file entry, the surface
 // it gives shading, and its polygons for export. One kind of shape is one file of
 // include/rt/shapes/ (sphere.h, plane.h); shapes.h lists them. Triangles, which meshes
-// are made of, are the kind the BVH's leaves test in blocks (rt/geometry/scene.h).
+// are made of, are the kind the BVH's leaves test in blocks (rt/geometry/geometry.h).
 //
 // A kind S provides, each used by exactly one stage:
 //   S::Desc, S::kKey, S::kKeys, S::read   loader: Objects/<kKey> entries, the keys each
