@@ -5,7 +5,7 @@
 // dependent loads per ray, and the eight float boxes fill one AVX register as
 // Embree's 8-wide nodes do (docs/performance.md). Bounds are stored as float,
 // rounded outwards, so every box contains its primitives exactly even when
-// Real is double; the box test itself runs in Real (traverse.cpp). Leaves hold
+// Real is double; the box test itself runs in Real (box_test.h). Leaves hold
 // up to kDefaultMaxLeaf primitives, tested kLeafBlock at a time (one SIMD register: four doubles
 // with AVX2, eight with AVX-512, eight floats), and the SAH prices them that way
 // (BvhBuildOptions::block).
@@ -133,7 +133,7 @@ private:
     size_t bytes_ = 0;  // allocated
 };
 
-// Primitives a leaf tests at once (traverse.cpp): one SIMD register of Real
+// Primitives a leaf tests at once (leaf_test.h): one SIMD register of Real
 // lanes, four triangles in double with AVX2 and eight with AVX-512, eight in
 // float; one without AVX2.
 #if defined(__AVX512F__)
@@ -194,11 +194,11 @@ struct Bvh {
     }
 };
 
-// The traversal's box test (traverse.cpp), exposed for the tests. It must accept
+// The traversal's box test (box_test.h, box_test.cpp), exposed for the tests. It must accept
 // every child box of `node` that the exact ray org + t dir, t in [tmin, tmax],
 // enters once the box is grown by box_padding(bvh, ray) on every side (tmin >= 0);
 // it never accepts an empty slot, but for float rays outside the float test's
-// domain (traverse.cpp, box_ray), which enter every slot. Returns the mask of
+// domain (box_test.h, box_ray_of<float>), which enter every slot. Returns the mask of
 // accepted children and their entry distances in t (for accepted ones: in float at
 // most the exact entry rounded up to a float; in double at most a factor 1 + 2^-50
 // above it, three roundings, give or take a few subnormals where it underflows).
@@ -207,7 +207,7 @@ struct Bvh {
 int test_node_boxes(const Bvh& bvh, const BvhNode& node, const Ray& ray, Real tmin, Real tmax, Real t[BvhNode::kWidth],
                     bool scalar);
 // How far the box test pads every box for `ray`: 0 in double; in float, the rounding
-// of the float primitive tests (traverse.cpp, box_pad).
+// of the float primitive tests (box_test.h, box_pad).
 double box_padding(const Bvh& bvh, const Ray& ray);
 
 }  // namespace rt

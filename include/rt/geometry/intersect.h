@@ -58,7 +58,7 @@ constexpr T gamma_bound(int n) {
 // The first stage of the watertight triangle test: the vertices relative to the
 // ray origin, sheared (x, y) and unsheared (z), and the three edge functions,
 // u, v, w the unnormalised weights of a, b and c. The traversal computes these
-// for four triangles at once with the same operations (traverse.cpp), so both
+// for a register of triangles at once with the same operations (rt/bvh/leaf_test.h), so both
 // paths give the same bits.
 struct TriEdges {
     Real ax, ay, az, bx, by, bz, cx, cy, cz;

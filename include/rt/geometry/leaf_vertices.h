@@ -1,4 +1,4 @@
-// Triangle vertices in BVH leaf order, for the leaf kernels (src/bvh/traverse.cpp).
+// Triangle vertices in BVH leaf order, for the leaf kernels (rt/bvh/leaf_test.h).
 #pragma once
 #include <cstddef>
 #include <cstdint>
