@@ -203,7 +203,7 @@ TEST(BvhBoxTest, NeverRejectsABoxTheExactRayEnters) {
         for (int i = 0; i < kWidth; ++i)
             if ((mask >> i & 1) && std::memcmp(&t[i], &ts[i], sizeof(Real)) != 0) ++lane_mismatch;
         // Float rays with a direction component above 2^100 are outside the float box
-        // test's domain (traverse.cpp, kDirDomain): they enter every slot, empty ones too.
+        // test's domain (rt/bvh/box_test.h, kDirDomain): they enter every slot, empty ones too.
         const Real largest = std::max({std::fabs(c.dir[0]), std::fabs(c.dir[1]), std::fabs(c.dir[2])});
         if (!(std::is_same_v<Real, float> && largest > Real(0x1p100))) {
             EXPECT_EQ(mask >> (kWidth - 1), 0) << "an empty slot was entered";
