@@ -133,8 +133,10 @@ struct Integrator {
         term.facing = true;
         if (lt) lt->facing = true;
         // Shadow ray from p + n * ShadowRayEpsilon (spec 3), never culled. It
-        // stops eps short of the light, so a light lying on a surface is not
-        // hidden by that surface at random. It starts at t = 0: the references
+        // reaches as far as the light is from p itself, which is up to eps past the
+        // light (the origin is nearer): a surface the light lies on hides it, as the
+        // references show (mirror_room's light on its ceiling plane;
+        // docs/conventions.md, "Shadow rays"). It starts at t = 0: the references
         // count occluders right at the offset origin (ignoring those within eps,
         // tower_smooth goes from 16 to 461 pixels off).
         const Real eps = setup.shadow_ray_epsilon;
@@ -144,13 +146,14 @@ struct Integrator {
         if (!(dist > 2 * eps)) return term;  // a light within 2 eps of the point is never occluded
         ++rays.shadow;
         const Ray shadow{so, so_to_light / dist};
+        const Real reach = std::sqrt(term.d2);
         if (lt) {
             lt->shadow_traced = true;
             lt->shadow = shadow;
-            lt->shadow_tmax = dist - eps;
+            lt->shadow_tmax = reach;
         }
         term.query = n_queries;
-        queries[n_queries++] = {shadow, 0, dist - eps, cache ? &cache->last_occluder[li] : nullptr};
+        queries[n_queries++] = {shadow, 0, reach, cache ? &cache->last_occluder[li] : nullptr};
         return term;
     }
 
