@@ -80,8 +80,11 @@ Answer brute_closest(const rt::Scene& s, const rt::Ray& r, Real tmin, Real tmax,
     rt::for_each_shape([&](auto k) {
         using S = decltype(k);
         for (const S& shape : s.geometry.all<S>()) {
-            Real t;
-            if (shape.intersect(r, tmin, tmax, t) && t < a.t) {
+            Real t, w[3];
+            uint32_t part = 0;
+            const bool hit = cull ? shape.template intersect<true, false>(r, tmin, tmax, t, w, part)
+                                  : shape.template intersect<false, false>(r, tmin, tmax, t, w, part);
+            if (hit && t < a.t) {
                 a.found = true;
                 a.t = t;
                 a.gid = gid;
@@ -104,7 +107,10 @@ bool brute_any(const rt::Scene& s, const rt::Ray& r, Real tmin, Real tmax) {
     }
     bool any = false;
     rt::for_each_shape([&](auto k) {
-        for (const auto& shape : s.geometry.all<decltype(k)>()) any = any || shape.intersect(r, tmin, tmax, t);
+        for (const auto& shape : s.geometry.all<decltype(k)>()) {
+            uint32_t part = 0;
+            any = any || shape.template intersect<false, true>(r, tmin, tmax, t, w, part);
+        }
     });
     return any;
 }

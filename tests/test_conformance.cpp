@@ -1,6 +1,7 @@
 // Conformance against the course's reference images.
 //
-// Every MANIFEST.tsv row whose inputs are "complete" is rendered in process through
+// Every row of scenes/hw1/ and scenes/hw2/MANIFEST.tsv whose inputs are "complete" is
+// rendered in process through
 // the library (load_scene -> build_scene -> render) and compared with its reference:
 // an image fails when more than 0.2% of its pixels (0.15% in float, kFailPct) differ
 // by more than one level in some channel. A Markdown table of all comparisons is printed once, after the last
@@ -48,13 +49,16 @@ constexpr double kFailPct = std::is_same_v<rt::Real, float> ? 0.15 : 0.2;
 constexpr double kTightPct = 0.05;  // the stricter mark reported in the table
 
 struct ManifestRow {
-    std::string scene;      // relative to scenes/hw1
+    std::string hw;         // "hw1" or "hw2": the assignment, its folder in scenes/
+    std::string scene;      // relative to scenes/<hw>
     std::string image;      // the camera ImageName
     std::string reference;  // relative to the shared folder
     std::string inputs;     // "complete" or "incomplete: missing <file>"
     int line = 0;
 
-    bool complete() const { return inputs == "complete"; }
+    // "complete", or "complete (...)" with a note such as the reference's culling.
+    bool complete() const { return inputs.rfind("complete", 0) == 0; }
+    std::string scene_path() const { return shared_dir() + "/scenes/" + hw + "/" + scene; }
     // The missing file named by an "incomplete: missing <file>" entry.
     std::string missing_file() const {
         const std::string key = "missing ";
@@ -74,43 +78,49 @@ std::string trim(const std::string& s) {
     return s.substr(b, e - b + 1);
 }
 
-std::string manifest_path() {
+// The assignments whose scenes and references the shared folder holds, and how many
+// complete images each manifest lists.
+const std::pair<const char*, size_t> kAssignments[] = {{"hw1", 20}, {"hw2", 6}};
+
+std::string manifest_path(const std::string& hw) {
     std::string root = shared_dir();
-    return root.empty() ? std::string() : root + "/scenes/hw1/MANIFEST.tsv";
+    return root.empty() ? std::string() : root + "/scenes/" + hw + "/MANIFEST.tsv";
 }
 
-// Parsed once; empty when the shared folder or the manifest is missing.
+// Both manifests, parsed once; empty when the shared folder or a manifest is missing.
 const std::vector<ManifestRow>& manifest() {
     static const std::vector<ManifestRow> rows = [] {
         std::vector<ManifestRow> out;
-        std::string path = manifest_path();
-        if (path.empty()) return out;
-        std::ifstream f(path);
-        std::string line;
-        int number = 0;
-        while (std::getline(f, line)) {
-            ++number;
-            if (trim(line).empty() || trim(line)[0] == '#') continue;
-            std::vector<std::string> cols;
-            std::stringstream ss(line);
-            std::string col;
-            while (std::getline(ss, col, '\t')) cols.push_back(trim(col));
-            if (cols.size() < 4) continue;  // reported by Conformance.ManifestReadable
-            out.push_back({cols[0], cols[1], cols[2], cols[3], number});
+        for (const auto& [hw, count] : kAssignments) {
+            std::string path = manifest_path(hw);
+            if (path.empty()) return out;
+            std::ifstream f(path);
+            std::string line;
+            int number = 0;
+            while (std::getline(f, line)) {
+                ++number;
+                if (trim(line).empty() || trim(line)[0] == '#') continue;
+                std::vector<std::string> cols;
+                std::stringstream ss(line);
+                std::string col;
+                while (std::getline(ss, col, '\t')) cols.push_back(trim(col));
+                if (cols.size() < 4) continue;  // reported by Conformance.ManifestReadable
+                out.push_back({hw, cols[0], cols[1], cols[2], cols[3], number});
+            }
         }
         return out;
     }();
     return rows;
 }
 
-std::vector<ManifestRow> rows_where(bool complete) {
+std::vector<ManifestRow> rows_where(const std::string& hw, bool complete) {
     std::vector<ManifestRow> out;
     for (const ManifestRow& r : manifest())
-        if (r.complete() == complete) out.push_back(r);
+        if (r.hw == hw && r.complete() == complete) out.push_back(r);
     return out;
 }
 
-size_t complete_count() { return rows_where(true).size(); }
+size_t complete_count(const std::string& hw) { return rows_where(hw, true).size(); }
 
 // "Car_front_smooth.png" -> "Car_front_smooth": a valid gtest parameter name.
 std::string param_name(const ::testing::TestParamInfo<ManifestRow>& info) {
@@ -124,6 +134,7 @@ std::string param_name(const ::testing::TestParamInfo<ManifestRow>& info) {
 // ---- The results table, printed once after all tests ----------------------------
 
 struct Result {
+    std::string hw;
     int line = 0;
     std::string image;
     bool compared = false;
@@ -151,12 +162,17 @@ std::string one_line(std::string s) {
 class ConformanceReport : public ::testing::Environment {
 public:
     void TearDown() override {
-        std::vector<Result> rows = results();
+        for (const auto& [hw, count] : kAssignments) report(hw);
+    }
+    static void report(const std::string& hw) {
+        std::vector<Result> rows;
+        for (const Result& r : results())
+            if (r.hw == hw) rows.push_back(r);
         if (rows.empty()) return;
         std::sort(rows.begin(), rows.end(), [](const Result& a, const Result& b) { return a.line < b.line; });
         int within_fail = 0, within_tight = 0;
         std::ostringstream os;
-        os << "\n## Conformance against the reference images\n\n"
+        os << "\n## Conformance against the reference images (" << hw << ")\n\n"
            << "| image | max diff | mean diff | % px > 1 | PSNR | within 0.05%? |\n"
            << "|---|---:|---:|---:|---:|:---:|\n";
         for (const Result& r : rows) {
@@ -172,7 +188,7 @@ public:
                << fmt(d.pct_over_1, 3) << " | " << (std::isinf(d.psnr) ? std::string("inf") : fmt(d.psnr, 2) + " dB")
                << " | " << (tight ? "yes" : (d.pct_over_1 <= kFailPct ? "no" : "NO (fails)")) << " |\n";
         }
-        const size_t total = complete_count();
+        const size_t total = complete_count(hw);
         os << "\n"
            << within_fail << "/" << total << " within 0.2%, " << within_tight << "/" << total << " within 0.05%";
         if (rows.size() != total) os << " (" << rows.size() << " of " << total << " images rendered)";
@@ -199,11 +215,12 @@ std::map<std::string, LoadedScene>& scene_cache() {
 
 LoadedScene& acquire_scene(const ManifestRow& row, const std::string& path) {
     auto& cache = scene_cache();
-    auto it = cache.find(row.scene);
+    const std::string key = row.hw + "/" + row.scene;
+    auto it = cache.find(key);
     if (it != cache.end()) return it->second;
-    LoadedScene& ls = cache[row.scene];
+    LoadedScene& ls = cache[key];
     for (const ManifestRow& r : manifest())
-        if (r.complete() && r.scene == row.scene) ++ls.remaining;
+        if (r.complete() && r.hw == row.hw && r.scene == row.scene) ++ls.remaining;
     try {
         rt::SceneDesc desc = rt::load_scene(path);
         for (const rt::CameraDesc& c : desc.cameras) ls.image_names.push_back(c.image_name);
@@ -217,7 +234,7 @@ LoadedScene& acquire_scene(const ManifestRow& row, const std::string& path) {
 
 void release_scene(const ManifestRow& row) {
     auto& cache = scene_cache();
-    auto it = cache.find(row.scene);
+    auto it = cache.find(row.hw + "/" + row.scene);
     if (it != cache.end() && --it->second.remaining <= 0) cache.erase(it);
 }
 
@@ -243,7 +260,7 @@ rt::Image diff_image(const rt::Image& ours, const rt::Image& ref) {
 void write_eyeball_output(const ManifestRow& row, const rt::Image& ours, const rt::Image& ref) {
     const char* env = std::getenv("RT_CONFORMANCE_OUT");
     if (!env || !*env) return;
-    const std::string dir = std::string(env) + "/" + rt::kPrecisionName;
+    const std::string dir = std::string(env) + "/" + rt::kPrecisionName + "/" + row.hw;
     std::error_code ec;
     fs::create_directories(dir, ec);
     const std::string stem = fs::path(row.image).stem().string();
@@ -274,19 +291,21 @@ TEST(Conformance, ManifestReadable) {
                   << std::flush;
         GTEST_SKIP() << "CONFORMANCE TESTS SKIPPED: ../shared not found (set RT_SHARED_DIR)";
     }
-    std::ifstream f(manifest_path());
-    ASSERT_TRUE(f.good()) << "cannot read " << manifest_path();
-    std::string line;
-    int number = 0;
-    while (std::getline(f, line)) {
-        ++number;
-        if (trim(line).empty() || trim(line)[0] == '#') continue;
-        int tabs = int(std::count(line.begin(), line.end(), '\t'));
-        EXPECT_GE(tabs, 3) << manifest_path() << ":" << number << ": fewer than 4 columns";
+    for (const auto& [hw, count] : kAssignments) {
+        std::ifstream f(manifest_path(hw));
+        ASSERT_TRUE(f.good()) << "cannot read " << manifest_path(hw);
+        std::string line;
+        int number = 0;
+        while (std::getline(f, line)) {
+            ++number;
+            if (trim(line).empty() || trim(line)[0] == '#') continue;
+            int tabs = int(std::count(line.begin(), line.end(), '\t'));
+            EXPECT_GE(tabs, 3) << manifest_path(hw) << ":" << number << ": fewer than 4 columns";
+        }
+        EXPECT_EQ(complete_count(hw), count) << "the " << hw << " manifest lists " << count << " complete images";
+        for (const ManifestRow& r : rows_where(hw, false))
+            EXPECT_FALSE(r.missing_file().empty()) << hw << " line " << r.line << ": " << r.inputs;
     }
-    EXPECT_EQ(complete_count(), 20u) << "the HW1 manifest lists 20 complete images";
-    for (const ManifestRow& r : rows_where(false))
-        EXPECT_FALSE(r.missing_file().empty()) << "line " << r.line << ": " << r.inputs;
 }
 
 class ConformanceImage : public ::testing::TestWithParam<ManifestRow> {};
@@ -294,10 +313,11 @@ class ConformanceImage : public ::testing::TestWithParam<ManifestRow> {};
 TEST_P(ConformanceImage, MatchesReference) {
     const ManifestRow& row = GetParam();
     const std::string root = shared_dir();
-    const std::string scene_path = root + "/scenes/hw1/" + row.scene;
+    const std::string scene_path = row.scene_path();
     const std::string ref_path = root + "/" + row.reference;
 
     Result rec;
+    rec.hw = row.hw;
     rec.line = row.line;
     rec.image = row.image;
     struct Record {
@@ -333,6 +353,9 @@ TEST_P(ConformanceImage, MatchesReference) {
 
     rt::Image ours;
     try {
+        // Default options for every image, grass_desert's too: its manifest note says its
+        // reference was made without culling, but it matches only with culling on
+        // (docs/transformations.md).
         ours = rt::render(*ls.scene, camera, rt::RenderOptions{});
     } catch (const std::exception& e) {
         rec.error = std::string("render threw: ") + e.what();
@@ -356,7 +379,8 @@ TEST_P(ConformanceImage, MatchesReference) {
         << " (max diff " << rec.diff.max_diff << ", mean " << fmt(rec.diff.mean_diff, 4) << ")";
 }
 
-INSTANTIATE_TEST_SUITE_P(HW1, ConformanceImage, ::testing::ValuesIn(rows_where(true)), param_name);
+INSTANTIATE_TEST_SUITE_P(HW1, ConformanceImage, ::testing::ValuesIn(rows_where("hw1", true)), param_name);
+INSTANTIATE_TEST_SUITE_P(HW2, ConformanceImage, ::testing::ValuesIn(rows_where("hw2", true)), param_name);
 GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(ConformanceImage);
 
 // Scenes whose PLY files were not distributed: the renderer must refuse them cleanly.
@@ -364,7 +388,7 @@ class ConformanceIncomplete : public ::testing::TestWithParam<ManifestRow> {};
 
 TEST_P(ConformanceIncomplete, BinaryFailsCleanly) {
     const ManifestRow& row = GetParam();
-    const std::string scene_path = shared_dir() + "/scenes/hw1/" + row.scene;
+    const std::string scene_path = row.scene_path();
     const std::string missing = fs::path(row.missing_file()).filename().string();
     ASSERT_FALSE(missing.empty()) << row.inputs;
 
@@ -396,7 +420,7 @@ TEST_P(ConformanceIncomplete, BinaryFailsCleanly) {
 
 TEST_P(ConformanceIncomplete, LoaderThrowsInputError) {
     const ManifestRow& row = GetParam();
-    const std::string scene_path = shared_dir() + "/scenes/hw1/" + row.scene;
+    const std::string scene_path = row.scene_path();
     const std::string missing = fs::path(row.missing_file()).filename().string();
     try {
         rt::SceneDesc desc = rt::load_scene(scene_path);
@@ -412,5 +436,6 @@ TEST_P(ConformanceIncomplete, LoaderThrowsInputError) {
     }
 }
 
-INSTANTIATE_TEST_SUITE_P(HW1, ConformanceIncomplete, ::testing::ValuesIn(rows_where(false)), param_name);
+INSTANTIATE_TEST_SUITE_P(HW1, ConformanceIncomplete, ::testing::ValuesIn(rows_where("hw1", false)), param_name);
+INSTANTIATE_TEST_SUITE_P(HW2, ConformanceIncomplete, ::testing::ValuesIn(rows_where("hw2", false)), param_name);
 GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(ConformanceIncomplete);

@@ -12,11 +12,13 @@
 
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <random>
 #include <set>
 #include <string>
 
 #include "rt/core/error.h"
+#include "rt/geometry/scene.h"
 #include "rt/loader/load_scene.h"
 #include "rt/materials/materials.h"
 #include "rt/shapes/shapes.h"
@@ -106,42 +108,69 @@ TEST(MaterialRegistry, SecondaryRaysLeaveTheSurfaceAndMakeNoEnergy) {
     });
 }
 
-// A shape of kind S for the property test: the scene format's fields, random.
+// A random affine map: a rotation, a non-uniform scaling (mirroring at times) and a
+// translation, so that kinds are tested moved as Transformations move them.
+rt::Affine random_transform(std::mt19937& rng) {
+    std::uniform_real_distribution<double> u(-1, 1), s(0.3, 2);
+    const double sign = u(rng) < 0 ? -1 : 1;
+    return rt::Affine::translation(u(rng), u(rng), u(rng)) * rt::Affine::rotation(180 * u(rng), u(rng), u(rng), 1) *
+           rt::Affine::scaling(sign * s(rng), s(rng), s(rng));
+}
+
+// A shape of kind S for the property test: the scene format's fields, random, moved by
+// a random transformation half of the time. Instances show a tetrahedron of `in`.
 template <class S>
 typename S::Desc random_desc(std::mt19937& rng) {
     std::uniform_real_distribution<double> u(-1, 1);
     const auto vec = [&] { return Vec3{Real(u(rng)), Real(u(rng)), Real(u(rng))}; };
     typename S::Desc d;
-    struct Reader {
-        decltype(vec)& v;
-        std::mt19937& rng;
-        Vec3 vertex(const char*) const { return v(); }
-        Real positive(const char*) const { return Real(0.1 + std::uniform_real_distribution<double>(0, 1)(rng)); }
-        Vec3 nonzero_vec3(const char*) const {
-            for (;;)
-                if (const Vec3 n = v(); rt::length(n) > Real(0.1)) return n;
-        }
-    } r{vec, rng};
-    S::read(r, d);
+    if constexpr (S::kReadAsShape) {
+        struct Reader {
+            decltype(vec)& v;
+            std::mt19937& rng;
+            Vec3 vertex(const char*) const { return v(); }
+            Real positive(const char*) const { return Real(0.1 + std::uniform_real_distribution<double>(0, 1)(rng)); }
+            Vec3 nonzero_vec3(const char*) const {
+                for (;;)
+                    if (const Vec3 n = v(); rt::length(n) > Real(0.1)) return n;
+            }
+        } r{vec, rng};
+        S::read(r, d);
+    }
+    if (u(rng) < 0) S::transform(d, random_transform(rng));
     return d;
+}
+
+// The meshes random_desc's instances show: mesh 0, a tetrahedron about the origin.
+rt::BuildInputs tetrahedron_inputs() {
+    rt::SceneDesc d;
+    rt::MeshDesc m;
+    m.positions = {{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+    m.indices = {0, 1, 2, 0, 3, 1, 0, 2, 3, 1, 3, 2};
+    d.meshes.push_back(m);
+    rt::BuildInputs in;
+    in.mesh_scenes.push_back(std::make_shared<rt::Scene>(rt::build_scene(std::move(d))));
+    return in;
 }
 
 TEST(ShapeRegistry, HitsLieInTheBoundsWithUnitNormals) {
     std::mt19937 rng(11);
     std::uniform_real_distribution<double> u(-1, 1);
     std::set<std::string> keys;
+    const rt::BuildInputs inputs = tetrahedron_inputs();
     rt::for_each_shape([&](auto k) {
         using S = decltype(k);
         EXPECT_TRUE(keys.insert(S::kKey).second) << S::kKey;
         EXPECT_STREQ(rt::shape_key(rt::kind_of<S>), S::kKey);
         int hits = 0;
         for (int i = 0; i < 2000; ++i) {
-            const S shape = S::build(random_desc<S>(rng));
+            const S shape = S::build(random_desc<S>(rng), inputs);
             const Vec3 org{Real(3 * u(rng)), Real(3 * u(rng)), Real(3 * u(rng))};
             const Vec3 target{Real(u(rng)), Real(u(rng)), Real(u(rng))};
             const rt::Ray ray{org, rt::normalize(target - org)};
-            Real t;
-            if (!shape.intersect(ray, 0, HUGE_VAL, t)) continue;
+            Real t, w[3];
+            uint32_t part = 0;
+            if (!shape.template intersect<false, false>(ray, 0, HUGE_VAL, t, w, part)) continue;
             ++hits;
             const Vec3 p = ray.org + ray.dir * t;
             if constexpr (S::kBounded) {
@@ -151,7 +180,7 @@ TEST(ShapeRegistry, HitsLieInTheBoundsWithUnitNormals) {
                     EXPECT_LE(double(p[a]), double(b.hi[a]) + kTol) << S::kKey;
                 }
             }
-            const rt::Surface s = shape.surface(p);
+            const rt::Surface s = shape.surface(p, w, part);
             EXPECT_NEAR(rt::length(s.ng), 1, kTol) << S::kKey;
             EXPECT_NEAR(rt::length(s.ns), 1, kTol) << S::kKey;
             EXPECT_GE(rt::dot(s.ng, s.ns), 0) << S::kKey;

@@ -28,8 +28,9 @@ inline BeforeTree any_hit_before_tree(const Scene& s, const Ray& ray, Real tmin,
         using S = decltype(k);
         if constexpr (!S::kBounded) {
             for (const S& shape : s.geometry.all<S>()) {
-                Real t;
-                if (!blocked && shape.intersect(ray, tmin, tmax, t)) blocked = true;
+                Real t, w[3];
+                uint32_t part;
+                if (!blocked && shape.template intersect<false, true>(ray, tmin, tmax, t, w, part)) blocked = true;
             }
         }
     });
@@ -38,7 +39,8 @@ inline BeforeTree any_hit_before_tree(const Scene& s, const Ray& ray, Real tmin,
     p = prepare(ray);
     if (occluder && *occluder != kNoOccluder) {
         Real t, w[3];
-        if (hit_prim<false, true>(s, p, *occluder, tmin, tmax, t, w)) return BeforeTree::Blocked;
+        uint32_t part;
+        if (hit_prim<false, true>(s, p, *occluder, tmin, tmax, t, w, part)) return BeforeTree::Blocked;
     }
     br = box_ray(p, s.accel.bvh, tmin);
     return BeforeTree::Traverse;
@@ -56,6 +58,7 @@ inline BeforeTree any_hit_before_tree(const Scene& s, const Ray& ray, Real tmin,
     const BeforeTree before = any_hit_before_tree(s, ray, tmin, tmax, occluder, p, br);
     if (before != BeforeTree::Traverse) return before == BeforeTree::Blocked;
     Real w[3];
+    uint32_t part;
     int32_t stack[kStackSize];
     uint16_t counts[kStackSize];
     int sp = 0;
@@ -66,7 +69,7 @@ inline BeforeTree any_hit_before_tree(const Scene& s, const Ray& ray, Real tmin,
         if (child < 0) {
             const uint32_t first = ~static_cast<uint32_t>(child);
             if (test_leaf<false, true>(
-                    s, p, first, count, tmin, [&] { return tmax; }, w,
+                    s, p, first, count, tmin, [&] { return tmax; }, w, part,
                     [&](uint32_t id, Real, const float*) {
                         if (occluder) *occluder = id;
                         return true;
@@ -134,8 +137,9 @@ inline BeforeTree any_hit_before_tree(const Scene& s, const Ray& ray, Real tmin,
                 const int r = __builtin_ctz(m);
                 const ShadowQuery& q = queries[r];
                 Real w[3];
+                uint32_t part;
                 if (test_leaf<false, true>(
-                        s, p[r], first, e.count, q.tmin, [&q] { return q.tmax; }, w,
+                        s, p[r], first, e.count, q.tmin, [&q] { return q.tmax; }, w, part,
                         [&q](uint32_t id, Real, const float*) {
                             if (q.occluder) *q.occluder = id;
                             return true;

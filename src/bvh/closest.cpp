@@ -43,6 +43,7 @@ struct ClosestSearch {
     uint32_t best_id = ~0u;  // primitive id (Geometry::shape_of)
     Real w[3] = {0, 0, 0};   // the last primitive test's weights; spheres leave them untouched
     Real best_w[3] = {0, 0, 0};
+    uint32_t part = 0, best_part = 0;  // the last test's instance triangle, and the best hit's
     // Primitive tests accept t <= best_t, so ties reach consider() and are settled by
     // id: their range ends at next_up(best_t), kept here as best_t changes rather than
     // computed for every primitive test.
@@ -74,6 +75,7 @@ struct ClosestSearch {
             best_w[0] = w[0];
             best_w[1] = w[1];
             best_w[2] = w[2];
+            best_part = part;
             found = true;
         }
     }
@@ -86,7 +88,7 @@ struct ClosestSearch {
     }
     void test_leaf_at(uint32_t first, uint16_t count) {
         test_leaf<kCull, false>(
-            *s, p, first, count, tmin, [this] { return prim_limit; }, w,
+            *s, p, first, count, tmin, [this] { return prim_limit; }, w, part,
             [this, count](uint32_t id, Real t, const float* corners) {
                 consider(id, t, corners, BvhNode::leaf_size_of(count));
                 return false;
@@ -101,7 +103,7 @@ struct ClosestSearch {
                 const uint32_t base = s->geometry.first_id(kind_of<S>);
                 for (size_t i = 0; i < shapes.size(); ++i) {
                     Real t;
-                    if (shapes[i].intersect(p.ray, tmin, prim_limit, t))
+                    if (shapes[i].template intersect<kCull, false>(p.ray, tmin, prim_limit, t, w, part))
                         consider(base + static_cast<uint32_t>(i), t, nullptr, 0);
                 }
             }
@@ -114,6 +116,7 @@ struct ClosestSearch {
         hit.w[0] = best_w[0];
         hit.w[1] = best_w[1];
         hit.w[2] = best_w[2];
+        hit.part = best_part;
         hit.corners = best_corners;
         hit.stride = best_stride;
         return true;

@@ -51,11 +51,6 @@ public:
         text += "v " + vec(p) + "\n";
         return ++vertices;
     }
-    void face(std::initializer_list<size_t> ids) {
-        text += "f";
-        for (size_t i : ids) text += " " + std::to_string(i);
-        text += "\n";
-    }
     // A face of vertices numbered from 0 after the first `base` written.
     void face(const std::vector<uint32_t>& local, size_t base) {
         text += "f";
@@ -100,37 +95,36 @@ ObjText scene_to_obj(const SceneDesc& scene, const std::string& mtl_file_name, i
     // The scene's extent sizes the planes.
     Bounds b;
     for (const MeshDesc& m : scene.meshes)
-        for (const Vec3& p : m.positions) b.add(p);
+        if (!m.instanced)
+            for (const Vec3& p : m.positions) b.add(m.transform.point(p));
     for_each_shape([&](auto k) {
         using S = decltype(k);
-        for (const typename S::Desc& e : scene.all<S>()) S::extent(e, [&b](Vec3 p) { b.add(p); });
+        for (const typename S::Desc& e : scene.all<S>()) S::extent(e, scene.meshes, [&b](Vec3 p) { b.add(p); });
     });
     for (const CameraDesc& c : scene.cameras) b.add(c.position);
     for (const PointLightDesc& l : scene.point_lights) b.add(l.position);
     const Vec3 center = b.empty() ? Vec3{0, 0, 0} : (b.lo + b.hi) * Real(0.5);
     const Real extent = b.empty() ? Real(1) : std::max(length(b.hi - b.lo), Real(1));
 
+    auto write = [&w](const std::string& name, uint32_t material, const Polygons& poly) {
+        w.object(name, material, poly.smooth);
+        const size_t base = w.vertices;
+        for (const Vec3& v : poly.vertices) w.vertex(v);
+        for (const std::vector<uint32_t>& f : poly.faces) w.face(f, base);
+    };
+    // A mesh an instance shows is written as the instance of itself (rt/shapes/instance.h).
     for (size_t i = 0; i < scene.meshes.size(); ++i) {
         const MeshDesc& m = scene.meshes[i];
-        w.object("mesh_" + std::to_string(i + 1), m.material, m.shading == ShadingMode::Smooth);
-        const size_t base = w.vertices;
-        for (const Vec3& p : m.positions) w.vertex(p);
-        for (size_t t = 0; t + 2 < m.indices.size(); t += 3)
-            w.face({base + m.indices[t] + 1, base + m.indices[t + 1] + 1, base + m.indices[t + 2] + 1});
+        if (!m.instanced) write("mesh_" + std::to_string(i + 1), m.material, mesh_polygons(m, m.transform));
     }
 
     // The other kinds (rt/shapes/shapes.h) as their polygons.
-    const ExportFrame frame{sphere_segments, center, extent};
+    const ExportFrame frame{sphere_segments, center, extent, &scene.meshes};
     for_each_shape([&](auto k) {
         using S = decltype(k);
         const std::vector<typename S::Desc>& list = scene.all<S>();
-        for (size_t i = 0; i < list.size(); ++i) {
-            const Polygons poly = S::polygons(list[i], frame);
-            w.object(std::string(S::kNoun) + "_" + std::to_string(i + 1), list[i].material, poly.smooth);
-            const size_t base = w.vertices;
-            for (const Vec3& v : poly.vertices) w.vertex(v);
-            for (const std::vector<uint32_t>& f : poly.faces) w.face(f, base);
-        }
+        for (size_t i = 0; i < list.size(); ++i)
+            write(std::string(S::kNoun) + "_" + std::to_string(i + 1), list[i].material, S::polygons(list[i], frame));
     });
     out.obj = std::move(w.text);
 

@@ -1,6 +1,7 @@
 // SceneDesc -> Scene: flat arrays, normals, BVH.
 #include <algorithm>
 #include <chrono>
+#include <memory>
 #include <thread>
 #include <type_traits>
 #include <utility>
@@ -18,6 +19,17 @@ inline bool degenerate(const std::vector<Vec3>& p, uint32_t a, uint32_t b, uint3
     n = cross(p[b] - p[a], p[c] - p[a]);
     const Real len = length(n);
     return !(len > 0) || !std::isfinite(len);
+}
+
+// Moves a mesh's positions by its Transformations, once; where they mirror, each face's
+// winding is reversed so that counter-clockwise stays the outside (the inverse transpose's
+// normal, docs/transformations.md).
+void bake_transform(MeshDesc& m) {
+    if (m.transform.is_identity()) return;
+    for (Vec3& p : m.positions) p = m.transform.point(p);
+    if (m.transform.det() < 0)
+        for (size_t f = 0; f + 2 < m.indices.size(); f += 3) std::swap(m.indices[f + 1], m.indices[f + 2]);
+    m.transform = Affine{};
 }
 
 // Meshes with at least this many faces are converted by two threads.
@@ -39,6 +51,7 @@ void add_run(Geometry& g, uint32_t first, uint32_t material, bool smooth) {
 // pooling across meshes does not match the references). Flat scenes get no
 // vertex normals at all. The degenerate faces' indices in `m` go to `skipped`.
 void add_mesh(Geometry& s, BuildReport& report, MeshDesc& m, BuildBox* boxes, std::vector<uint32_t>& skipped) {
+    bake_transform(m);
     const uint32_t base = static_cast<uint32_t>(s.positions.size());
     if (base == 0 && s.positions.capacity() <= m.positions.size())
         s.positions = std::move(m.positions);
@@ -241,6 +254,24 @@ Scene build(SceneDesc& d, const BvhBuildOptions& bvh) {
     setup.materials = std::move(d.materials);
 
     Geometry& g = s.geometry;
+    // The meshes that instances show: in their own space, each with its own BVH
+    // (rt/shapes/instance.h); the rest go into the scene's arrays.
+    BuildInputs inputs;
+    inputs.mesh_scenes.resize(d.meshes.size());
+    for (size_t i = 0; i < d.meshes.size(); ++i) {
+        MeshDesc& m = d.meshes[i];
+        if (!m.instanced) continue;
+        SceneDesc own;
+        own.path = d.path;
+        own.meshes.push_back(std::move(m));
+        own.meshes[0].transform = Affine{};
+        own.meshes[0].instanced = false;
+        auto mesh_scene = std::make_shared<Scene>(build(own, bvh));
+        s.report.degenerate_triangles += mesh_scene->report.degenerate_triangles;
+        inputs.mesh_scenes[i] = std::move(mesh_scene);
+        m = MeshDesc{};
+        m.instanced = true;
+    }
     size_t ntri = 0, nvert = 0;
     for (const MeshDesc& m : d.meshes) {
         ntri += m.indices.size() / 3;
@@ -257,6 +288,7 @@ Scene build(SceneDesc& d, const BvhBuildOptions& bvh) {
     ReusableStorage storage(std::max(nboxes * sizeof(BuildBox), LeafVertices::coordinates_for(nboxes) * sizeof(float)));
     BuildBox* const boxes = storage.emplace<BuildBox>(nboxes);
     for (MeshDesc& m : d.meshes) {
+        if (m.instanced) continue;
         s.names.meshes.push_back({static_cast<uint32_t>(g.triangles.size()), m.triangle_object, m.id, {}});
         add_mesh(g, s.report, m, boxes, s.names.meshes.back().skipped);
         std::vector<Vec3>().swap(m.positions);
@@ -265,10 +297,12 @@ Scene build(SceneDesc& d, const BvhBuildOptions& bvh) {
     for_each_shape([&](auto k) {
         using S = decltype(k);
         for (const typename S::Desc& e : d.all<S>()) {
-            g.all<S>().push_back(S::build(e));
-            s.names.ids[size_t(kind_of<S>)].push_back(e.id);
+            g.all<S>().push_back(S::build(e, inputs));
+            s.names.labels[size_t(kind_of<S>)].push_back(std::string(e.key ? e.key : S::kKey) + " " + e.id);
         }
     });
+    for (auto& m : inputs.mesh_scenes)
+        if (m) g.mesh_scenes.push_back(std::move(m));
 
     // Boxes of the bounded shapes after the triangles (add_mesh made theirs).
     add_boxes(g, g.count(ShapeKind::Triangle), boxes);

@@ -11,10 +11,12 @@
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <optional>
 #include <sstream>
 #include <unordered_map>
 
 #include "rt/camera/camera.h"
+#include "rt/core/affine.h"
 #include "rt/core/error.h"
 #include "rt/io/files.h"
 #include "rt/loader/ply.h"
@@ -55,7 +57,7 @@ public:
         expect_object(scene, sp);
         check_keys(scene, sp, sp,
                    {"BackgroundColor", "ShadowRayEpsilon", "IntersectionTestEpsilon", "MaxRecursionDepth", "Cameras",
-                    "Lights", "Materials", "VertexData", "Objects"});
+                    "Lights", "Materials", "Transformations", "VertexData", "Objects"});
 
         if (const json* v = find(scene, "BackgroundColor")) out_.background = color(*v, sp + "/BackgroundColor");
         if (const json* v = find(scene, "ShadowRayEpsilon"))
@@ -70,6 +72,7 @@ public:
         }
 
         load_vertices(scene, sp);
+        load_transformations(scene, sp);
         load_materials(scene, sp);
         load_cameras(scene, sp);
         load_lights(scene, sp);
@@ -86,6 +89,7 @@ private:
     SceneDesc& out_;
     std::vector<Vec3> vertices_;                              // VertexData, 0-based
     std::unordered_map<std::string, uint32_t> material_ids_;  // _id -> index
+    std::unordered_map<std::string, Affine> transforms_;      // "t2", "s1", "r3", "c1" -> its matrix
     struct Unknown {
         int count = 0;
         std::string suggestion;  // the valid key it is a near miss of (rt/loader/spelling.h), or ""
@@ -308,6 +312,90 @@ private:
                             static_cast<Real>(xs[3 * i + 2])};
     }
 
+    // Scene/Transformations: Translation "tx ty tz", Scaling "sx sy sz", Rotation
+    // "degrees ax ay az", Composite (16 numbers, a row-major 4x4 matrix), each one object or
+    // an array, named by their letter and _id ("t2") where objects refer to them
+    // (docs/transformations.md).
+    void load_transformations(const json& scene, const std::string& sp) {
+        const json* ts = find(scene, "Transformations");
+        const std::string path = sp + "/Transformations";
+        if (!ts || ts->is_null()) return;
+        expect_object(*ts, path);
+        static constexpr const char* kKinds[] = {"Translation", "Scaling", "Rotation", "Composite"};
+        check_keys(*ts, path, path, kKinds);
+        for (const char* kind : kKinds) {
+            const char letter = static_cast<char>(std::tolower(static_cast<unsigned char>(kind[0])));
+            size_t position = 0;
+            for_each_item(*ts, path, kind, [&](const json& t, const std::string& tp) {
+                check_keys(t, tp, path + "/" + kind, {"_id", "_data"});
+                ++position;
+                const std::string id =
+                    find(t, "_id") ? std::to_string(integer(*find(t, "_id"), tp + "/_id")) : std::to_string(position);
+                const std::string dp = tp + "/_data";
+                const json& data = require(t, tp, "_data");
+                Affine a;
+                if (letter == 't') {
+                    const std::vector<double> v = exactly(data, dp, 3);
+                    a = Affine::translation(v[0], v[1], v[2]);
+                } else if (letter == 's') {
+                    const std::vector<double> v = exactly(data, dp, 3);
+                    if (v[0] == 0 || v[1] == 0 || v[2] == 0) fail(dp, "a scaling factor is zero");
+                    a = Affine::scaling(v[0], v[1], v[2]);
+                } else if (letter == 'r') {
+                    const std::vector<double> v = exactly(data, dp, 4);
+                    if (v[1] == 0 && v[2] == 0 && v[3] == 0) fail(dp, "the rotation axis is the zero vector");
+                    a = Affine::rotation(v[0], v[1], v[2], v[3]);
+                } else {
+                    const std::vector<double> v = exactly(data, dp, 16);
+                    if (v[12] != 0 || v[13] != 0 || v[14] != 0 || v[15] != 1)
+                        fail(dp, "the last row of a composite transformation must be 0 0 0 1");
+                    a = Affine::rows(v.data());
+                    if (!(std::fabs(a.det()) > 0)) fail(dp, "the composite transformation is singular");
+                }
+                if (!transforms_.emplace(std::string(1, letter) + id, a).second)
+                    fail(tp + "/_id", std::string("duplicate ") + kind + " id " + id);
+            });
+        }
+    }
+
+    // An entry's Transformations ("t2 s3 r1": applied in the order written, the first
+    // to the object as written), composed into one matrix; nullopt when it has none.
+    std::optional<Affine> transform_ref(const json& obj, const std::string& path) const {
+        const json* v = find(obj, "Transformations");
+        if (!v || v->is_null()) return std::nullopt;
+        const std::string tp = path + "/Transformations";
+        std::istringstream words(text(*v, tp));
+        Affine m;
+        std::string w;
+        while (words >> w) {
+            auto it = transforms_.find(w);
+            if (it == transforms_.end()) {
+                const bool form = w.size() > 1 && std::strchr("tsrc", w[0]) &&
+                                  std::all_of(w.begin() + 1, w.end(),
+                                              [](char c) { return std::isdigit(static_cast<unsigned char>(c)); });
+                fail(tp, form ? "transformation '" + w + "' does not exist (Scene/Transformations defines no " +
+                                    transform_kind(w[0]) + " with _id " + w.substr(1) + ")"
+                              : "'" + w +
+                                    "' is not a transformation reference (a letter t, s, r or c and an _id, as in t1)");
+            }
+            m = it->second * m;
+        }
+        return m;
+    }
+
+    static const char* transform_kind(char letter) {
+        switch (letter) {
+            case 't':
+                return "Translation";
+            case 's':
+                return "Scaling";
+            case 'r':
+                return "Rotation";
+            default:
+                return "Composite";
+        }
+    }
+
     // What a kind's read() (rt/shapes/shape.h, rt/materials/material.h) asks for, by
     // key, with the loader's checks and messages.
     struct FieldReader {
@@ -387,7 +475,7 @@ private:
         for_each_item(cs, path, "Camera", [&](const json& c, const std::string& cp) {
             check_keys(c, cp, generic,
                        {"_id", "_type", "Position", "Gaze", "GazePoint", "Up", "NearPlane", "NearDistance", "FovY",
-                        "ImageResolution", "ImageName"});
+                        "ImageResolution", "ImageName", "Transformations"});
             CameraDesc d;
             bool look_at = false;
             if (const json* t = find(c, "_type")) {
@@ -431,6 +519,13 @@ private:
                     fail(cp + "/NearPlane", "left/right and bottom/top must differ");
             }
             d.up = nonzero_vec3(require(c, cp, "Up"), cp + "/Up");
+            // A camera moves as a rigid body would: its position as a point, its gaze and
+            // up as directions (docs/transformations.md).
+            if (const std::optional<Affine> m = transform_ref(c, cp)) {
+                d.position = m->point(d.position);
+                d.gaze = m->vector(d.gaze);
+                d.up = m->vector(d.up);
+            }
             if (!spans_camera_frame(d.gaze, d.up)) fail(cp + "/Up", "Up is parallel to the gaze direction");
             out_.cameras.push_back(d);
         });
@@ -446,9 +541,10 @@ private:
         if (const json* a = find(*ls, "AmbientLight")) out_.ambient_light = color(*a, path + "/AmbientLight");
         const std::string generic = path + "/PointLight";
         for_each_item(*ls, path, "PointLight", [&](const json& l, const std::string& lp) {
-            check_keys(l, lp, generic, {"_id", "Position", "Intensity"});
-            out_.point_lights.push_back({vec3(require(l, lp, "Position"), lp + "/Position"),
-                                         color(require(l, lp, "Intensity"), lp + "/Intensity")});
+            check_keys(l, lp, generic, {"_id", "Position", "Intensity", "Transformations"});
+            Vec3 position = vec3(require(l, lp, "Position"), lp + "/Position");
+            if (const std::optional<Affine> m = transform_ref(l, lp)) position = m->point(position);
+            out_.point_lights.push_back({position, color(require(l, lp, "Intensity"), lp + "/Intensity")});
         });
     }
 
@@ -479,10 +575,12 @@ private:
 
         size_t meshes = 0, triangles = 0;  // positions among their kind, for object_id
         for_each_item(*os, path, "Mesh", [&](const json& m, const std::string& mp) {
-            check_keys(m, mp, path + "/Mesh", {"_id", "_shadingMode", "Material", "Faces"});
+            check_keys(m, mp, path + "/Mesh", {"_id", "_shadingMode", "Material", "Faces", "Transformations"});
             MeshDesc mesh;
             mesh.material = material_ref(m, mp);
             mesh.id = object_id(m, ++meshes);
+            if (const std::optional<Affine> t = transform_ref(m, mp)) mesh.transform = *t;
+            add_base(mesh.id, Base{false, static_cast<uint32_t>(out_.meshes.size()), mp});
             if (const json* s = find(m, "_shadingMode")) {
                 const std::string& mode = text(*s, mp + "/_shadingMode");
                 if (mode == "smooth")
@@ -534,11 +632,12 @@ private:
         });
 
         for_each_item(*os, path, "Triangle", [&](const json& t, const std::string& tp) {
-            check_keys(t, tp, path + "/Triangle", {"_id", "Material", "Indices"});
+            check_keys(t, tp, path + "/Triangle", {"_id", "Material", "Indices", "Transformations"});
             MeshDesc mesh;
             mesh.material = material_ref(t, tp);
             mesh.triangle_object = true;
             mesh.id = object_id(t, ++triangles);
+            if (const std::optional<Affine> m = transform_ref(t, tp)) mesh.transform = *m;
             add_inline_faces(mesh, exactly(require(t, tp, "Indices"), tp + "/Indices", 3), tp + "/Indices");
             mesh.source = tp;
             out_.meshes.push_back(std::move(mesh));
@@ -547,17 +646,119 @@ private:
         // The other kinds (rt/shapes/shapes.h), each by its own reader.
         for_each_shape([&](auto k) {
             using S = decltype(k);
-            std::vector<typename S::Desc>& list = out_.all<S>();
-            for_each_item(*os, path, S::kKey, [&](const json& e, const std::string& ep) {
-                check_keys(e, ep, path + "/" + S::kKey, S::kKeys);
-                typename S::Desc d;
-                d.material = material_ref(e, ep);
-                FieldReader r{*this, e, ep};
-                S::read(r, d);
-                d.id = object_id(e, list.size() + 1);
-                list.push_back(std::move(d));
-            });
+            if constexpr (S::kReadAsShape) {
+                std::vector<typename S::Desc>& list = out_.all<S>();
+                for_each_item(*os, path, S::kKey, [&](const json& e, const std::string& ep) {
+                    check_keys(e, ep, path + "/" + S::kKey, S::kKeys);
+                    typename S::Desc d;
+                    d.material = material_ref(e, ep);
+                    FieldReader r{*this, e, ep};
+                    S::read(r, d);
+                    if (const std::optional<Affine> m = transform_ref(e, ep)) S::transform(d, *m);
+                    d.id = object_id(e, list.size() + 1);
+                    list.push_back(std::move(d));
+                });
+            }
         });
+        load_instances(*os, path);
+    }
+
+    // --- mesh instances ---------------------------------------------------------
+
+    // What a _baseMeshId may name: an Objects/Mesh (by its index in SceneDesc::meshes) or
+    // an Objects/MeshInstance (by its place among them).
+    struct Base {
+        bool instance = false;
+        uint32_t index = 0;
+        std::string path;  // where it is defined; empty when two entries share the id
+    };
+    std::unordered_map<std::string, Base> bases_;
+    void add_base(const std::string& id, Base b) {
+        auto [it, inserted] = bases_.emplace(id, b);
+        if (!inserted) it->second.path.clear();
+    }
+
+    struct PendingInstance {
+        const json* entry;
+        std::string path;
+        int state = 0;  // 0 unread, 1 being resolved (a cycle when met again), 2 done
+        InstanceDesc desc;
+    };
+    std::vector<PendingInstance> instances_;
+
+    // Objects/MeshInstance: _baseMeshId names a Mesh or another MeshInstance (whose
+    // mesh, transformation and material it starts from); its Transformations come after
+    // the base's, or replace them with _resetTransform "true"; Material, when given,
+    // replaces the base's (docs/transformations.md).
+    void load_instances(const json& os, const std::string& path) {
+        for_each_item(os, path, Instance::kKey, [&](const json& e, const std::string& ep) {
+            check_keys(e, ep, path + "/" + Instance::kKey, Instance::kKeys);
+            PendingInstance p{&e, ep, 0, {}};
+            p.desc.id = object_id(e, instances_.size() + 1);
+            add_base(p.desc.id, Base{true, static_cast<uint32_t>(instances_.size()), ep});
+            instances_.push_back(std::move(p));
+        });
+        std::vector<InstanceDesc>& list = out_.all<Instance>();
+        for (size_t i = 0; i < instances_.size(); ++i) resolve_instance(i);
+        // The meshes shown, each as an instance of itself, before the MeshInstances.
+        for (size_t m = 0; m < out_.meshes.size(); ++m) {
+            MeshDesc& mesh = out_.meshes[m];
+            if (!mesh.instanced) continue;
+            InstanceDesc self;
+            self.mesh = static_cast<uint32_t>(m);
+            self.transform = mesh.transform;
+            self.material = mesh.material;
+            self.id = mesh.id;
+            self.key = "Mesh";
+            list.push_back(self);
+        }
+        for (PendingInstance& p : instances_) list.push_back(std::move(p.desc));
+        instances_.clear();
+    }
+
+    const InstanceDesc& resolve_instance(size_t i) {
+        PendingInstance& p = instances_[i];
+        if (p.state == 2) return p.desc;
+        const std::string bp = p.path + "/_baseMeshId";
+        if (p.state == 1) fail(bp, "instances form a cycle through _baseMeshId");
+        p.state = 1;
+        const json& e = *p.entry;
+        const json& base_id = require(e, p.path, "_baseMeshId");
+        const std::string id = base_id.is_number() ? std::to_string(integer(base_id, bp)) : text(base_id, bp);
+        auto it = bases_.find(id);
+        if (it == bases_.end()) fail(bp, "no Mesh or MeshInstance has _id " + id);
+        if (it->second.path.empty()) fail(bp, "more than one Mesh or MeshInstance has _id " + id);
+        const Base base = it->second;
+        Affine base_transform;
+        uint32_t base_material = 0;
+        if (base.instance) {
+            const InstanceDesc& b = resolve_instance(base.index);
+            p.desc.mesh = b.mesh;
+            base_transform = b.transform;
+            base_material = b.material;
+        } else {
+            const MeshDesc& m = out_.meshes[base.index];
+            p.desc.mesh = base.index;
+            base_transform = m.transform;
+            base_material = m.material;
+        }
+        PendingInstance& q = instances_[i];  // resolve_instance does not grow instances_
+        q.desc.material = find(e, "Material") ? material_ref(e, q.path) : base_material;
+        bool reset = false;
+        if (const json* r = find(e, "_resetTransform")) {
+            const std::string rp = q.path + "/_resetTransform";
+            if (r->is_boolean())
+                reset = r->get<bool>();
+            else if (text(*r, rp) == "true")
+                reset = true;
+            else if (text(*r, rp) != "false")
+                fail(rp, "expected true or false, got '" + r->get<std::string>() + "'");
+        }
+        const std::optional<Affine> own = transform_ref(e, q.path);
+        q.desc.transform = reset ? own.value_or(Affine{}) : own.value_or(Affine{}) * base_transform;
+        out_.meshes[q.desc.mesh].instanced = true;
+        q.state = 2;
+        return q.desc;
     }
 };
 

@@ -14,10 +14,12 @@
 
 namespace rt::traversal {
 
-// Tests one BVH primitive; returns true with t (and weights) on a hit in (tmin, tmax).
+// Tests one BVH primitive; returns true with t (and weights, and an instance's part) on
+// a hit in (tmin, tmax).
 template <bool kCull, bool kShadow = false>
-inline bool hit_prim(const Scene& s, const RayPre& p, uint32_t id, Real tmin, Real tmax, Real& t, Real w[3]) {
-    return s.geometry.intersect<kCull, kShadow>(p, s.geometry.shape_of<true>(id), tmin, tmax, t, w);
+inline bool hit_prim(const Scene& s, const RayPre& p, uint32_t id, Real tmin, Real tmax, Real& t, Real w[3],
+                     uint32_t& part) {
+    return s.geometry.intersect<kCull, kShadow>(p, s.geometry.shape_of<true>(id), tmin, tmax, t, w, part);
 }
 
 #if defined(__AVX2__)
@@ -180,7 +182,7 @@ inline bool test_copied_leaf(const Scene& s, const RayPre& p, const T* lv, uint3
     return false;
 }
 
-// Calls hit(id, t, corners) (weights in w) for every primitive of the leaf at
+// Calls hit(id, t, corners) (weights in w, an instance's triangle in part) for every primitive of the leaf at
 // prims[first] with BvhNode count `count` that the ray hits in (tmin, limit()), in
 // leaf order; corners is the triangle's first float in the float leaf-order
 // vertices (Hit::corners, with the leaf's size as stride), or null. limit() is read
@@ -188,7 +190,7 @@ inline bool test_copied_leaf(const Scene& s, const RayPre& p, const T* lv, uint3
 // returns true).
 template <bool kCull, bool kShadow, class Limit, class OnHit>
 inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint16_t count, Real tmin, const Limit& limit,
-                      Real w[3], const OnHit& hit) {
+                      Real w[3], uint32_t& part, const OnHit& hit) {
     const uint32_t size = BvhNode::leaf_size_of(count);
     const uint32_t end = first + size;
     // Separate loops per source of vertices: one loop choosing the source per block
@@ -211,7 +213,8 @@ inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint16_t 
         if (!triangles) {  // other shapes among them: one at a time
             for (int j = 0; j < n; ++j) {
                 Real t;
-                if (hit_prim<kCull, kShadow>(s, p, ids[j], tmin, limit(), t, w) && hit(ids[j], t, nullptr)) return true;
+                if (hit_prim<kCull, kShadow>(s, p, ids[j], tmin, limit(), t, w, part) && hit(ids[j], t, nullptr))
+                    return true;
             }
             continue;
         }
@@ -227,12 +230,12 @@ inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint16_t 
 #else
 template <bool kCull, bool kShadow, class Limit, class OnHit>
 inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint16_t count, Real tmin, const Limit& limit,
-                      Real w[3], const OnHit& hit) {
+                      Real w[3], uint32_t& part, const OnHit& hit) {
     const uint32_t end = first + BvhNode::leaf_size_of(count);
     for (uint32_t i = first; i < end; ++i) {
         const uint32_t id = s.accel.bvh.prims[i];
         Real t;
-        if (hit_prim<kCull, kShadow>(s, p, id, tmin, limit(), t, w) && hit(id, t, nullptr)) return true;
+        if (hit_prim<kCull, kShadow>(s, p, id, tmin, limit(), t, w, part) && hit(id, t, nullptr)) return true;
     }
     return false;
 }

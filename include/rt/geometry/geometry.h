@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "rt/bvh/bvh.h"
@@ -56,7 +57,8 @@ struct Hit {
     Real t = HUGE_VAL;
     ShapeKind kind = ShapeKind::Triangle;
     uint32_t index = 0;     // into Geometry::triangles, or its kind's array
-    Real w[3] = {0, 0, 0};  // barycentric weights (triangles)
+    Real w[3] = {0, 0, 0};  // barycentric weights (triangles, and an instance's triangle)
+    uint32_t part = 0;      // an instance's triangle (in its mesh's own Geometry)
     // A triangle found in the leaf-order vertices (LeafVertices): its coordinate
     // `axis` of vertex k is corners[(3 * k + axis) * stride], equal to its
     // position's. Shading reads them there, already in cache. Null otherwise.
@@ -70,6 +72,9 @@ struct Geometry {
     UninitVector<Triangle> triangles;
     std::vector<TriangleRun> runs;  // cover every triangle, ascending, runs[0].first == 0
     ShapeVectors shapes;            // the other kinds: all<Sphere>(), ...
+    // The meshes instances show, each with its own BVH (rt/shapes/instance.h), which
+    // the instances point into.
+    std::vector<std::shared_ptr<const Scene>> mesh_scenes;
 
     // The primitives of kind S (rt/shapes/shapes.h).
     template <class S>
@@ -134,17 +139,19 @@ struct Geometry {
     }
 
     // Ray test of one primitive: true with the distance t in (tmin, tmax) on a hit,
-    // and for triangles the barycentric weights w (others leave w alone). kCull,
-    // kShadow: see intersect_triangle.
+    // and for triangles the barycentric weights w (others leave w alone; an instance
+    // sets them and `part`, the triangle of its mesh). kCull, kShadow: see
+    // intersect_triangle.
     template <bool kCull, bool kShadow = false>
-    bool intersect(const RayPre& p, ShapeRef s, Real tmin, Real tmax, Real& t, Real w[3]) const {
+    bool intersect(const RayPre& p, ShapeRef s, Real tmin, Real tmax, Real& t, Real w[3], uint32_t& part) const {
         if (s.kind == ShapeKind::Triangle) {
             const Triangle& tri = triangles[s.index];
             return intersect_triangle<kCull, kShadow>(p, positions[tri.v[0]], positions[tri.v[1]], positions[tri.v[2]],
                                                       tmin, tmax, t, w);
         }
-        return visit_shape<bool>(s.kind,
-                                 [&](auto k) { return all<decltype(k)>()[s.index].intersect(p.ray, tmin, tmax, t); });
+        return visit_shape<bool>(s.kind, [&](auto k) {
+            return all<decltype(k)>()[s.index].template intersect<kCull, kShadow>(p.ray, tmin, tmax, t, w, part);
+        });
     }
 
     // Vertex k of the triangle of `h` from its leaf-order vertices (h.corners).
@@ -176,7 +183,8 @@ struct Geometry {
             }
             return {ng, ns, run.material};
         }
-        return visit_shape<Surface>(h.kind, [&](auto k) { return all<decltype(k)>()[h.index].surface(p); });
+        return visit_shape<Surface>(h.kind,
+                                    [&](auto k) { return all<decltype(k)>()[h.index].surface(p, h.w, h.part); });
     }
 
 private:

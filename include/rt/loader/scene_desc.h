@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "rt/core/affine.h"
 #include "rt/core/math.h"
 #include "rt/materials/materials.h"
 #include "rt/shapes/shapes.h"
@@ -39,6 +40,11 @@ struct MeshDesc {
     // (one face), and its _id as written (its 1-based position among its kind without one).
     bool triangle_object = false;
     std::string id;
+    // Its Transformations: the positions above as written -> the world.
+    Affine transform;
+    // Shown by a MeshInstance: then drawn as an instance of itself too (rt/shapes/instance.h),
+    // its positions kept as written.
+    bool instanced = false;
 };
 
 struct SceneDesc {

@@ -1,6 +1,7 @@
 // An infinite plane (spec 3, "Plane"): Objects/Plane, its Point a vertex id, its Normal
 // any non-zero vector (normalised when built). Both sides are hit; it is outside the
-// BVH, so every ray tests every plane.
+// BVH, so every ray tests every plane. Transformations move its point and carry its
+// normal by the inverse transpose: a moved plane is a plane.
 #pragma once
 #include <cmath>
 
@@ -26,10 +27,11 @@ inline bool intersect_plane(const Ray& r, Vec3 point, Vec3 normal, Real tmin, Re
 struct Plane {
     using Desc = PlaneDesc;
     static constexpr const char* kKey = "Plane";
-    static constexpr const char* kKeys[] = {"_id", "Material", "Point", "Normal"};
+    static constexpr const char* kKeys[] = {"_id", "Material", "Point", "Normal", "Transformations"};
     static constexpr const char* kNoun = "plane";
     static constexpr const char* kNouns = "planes";
     static constexpr bool kBounded = false;
+    static constexpr bool kReadAsShape = true;
 
     Vec3 point, normal;  // normal has unit length
     uint32_t material;
@@ -39,16 +41,21 @@ struct Plane {
         d.point = r.vertex("Point");
         d.normal = r.nonzero_vec3("Normal");
     }
-    static Plane build(const Desc& d) { return {d.point, normalize(d.normal), d.material}; }
+    static void transform(Desc& d, const Affine& m) {
+        d.point = m.point(d.point);
+        d.normal = normalize(m.inverse().transposed_vector(d.normal));
+    }
+    static Plane build(const Desc& d, const BuildInputs&) { return {d.point, normalize(d.normal), d.material}; }
 
     Box bounds() const { return {{-HUGE_VALF, -HUGE_VALF, -HUGE_VALF}, {HUGE_VALF, HUGE_VALF, HUGE_VALF}}; }
-    bool intersect(const Ray& ray, Real tmin, Real tmax, Real& t) const {
+    template <bool kCull, bool kShadow>
+    bool intersect(const Ray& ray, Real tmin, Real tmax, Real& t, Real*, uint32_t&) const {
         return intersect_plane(ray, point, normal, tmin, tmax, t);
     }
-    Surface surface(Vec3) const { return {normal, normal, material}; }
+    Surface surface(Vec3, const Real*, uint32_t) const { return {normal, normal, material}; }
 
     template <class Add>
-    static void extent(const Desc& d, Add&& add) {
+    static void extent(const Desc& d, const std::vector<MeshDesc>&, Add&& add) {
         add(d.point);
     }
     // A square of side 10 x the scene's extent, centred on the scene's centre's

@@ -7,24 +7,37 @@
 //   S::Desc, S::kKey, S::kKeys, S::read   loader: Objects/<kKey> entries, the keys each
 //                                         may carry, and the reading of its own fields
 //   S::kNoun, S::kNouns                   counts in messages and --stats ("3 spheres")
+//   S::kReadAsShape                       false: the loader reads its entries itself
+//                                         (an instance refers to meshes by id)
+//   S::transform(desc, m)                 the loader: its Transformations (rt/core/affine.h)
 //   S::kBounded                           true: in the BVH; false: tested by every ray
-//   S::build(desc)                        the render form, built from the desc
-//   s.bounds(), s.intersect(...), s.surface(p)   the BVH build, ray tests, shading
-//   S::extent(desc, add), S::polygons(desc, frame) the OBJ export (rtconvert)
+//   S::build(desc, inputs)                the render form, built from the desc
+//   s.bounds(), s.intersect<kCull, kShadow>(ray, tmin, tmax, t, w, part),
+//   s.surface(p, w, part)                 the BVH build, ray tests, shading; w and part
+//                                         are what the test found besides t (a kind made
+//                                         of triangles: which one, and where in it)
+//   S::extent(desc, meshes, add), S::polygons(desc, frame)   the OBJ export (rtconvert)
 #pragma once
+#include <algorithm>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "rt/core/affine.h"
 #include "rt/core/math.h"
 
 namespace rt {
+
+struct MeshDesc;  // rt/loader/scene_desc.h
+struct Scene;     // rt/geometry/scene.h
 
 // The fields the loader reads for every kind: Material (a 1-based id in the file) and
 // _id, as written (its 1-based position among its kind when it has none).
 struct ShapeDescBase {
     uint32_t material = 0;  // into SceneDesc::materials
     std::string id;
+    const char* key = nullptr;  // the entry's Objects/<key> when not its kind's (--trace)
 };
 
 // What shading needs to know about a hit point.
@@ -34,12 +47,27 @@ struct Surface {
     uint32_t material;  // into SceneSetup::materials
 };
 
+// What build() may use besides its desc: the object-space scenes (triangles and their
+// BVH) of the meshes that instances show, by SceneDesc::meshes index, null for others.
+struct BuildInputs {
+    std::vector<std::shared_ptr<const Scene>> mesh_scenes;
+};
+
 // A shape as polygons, for formats without spheres or planes (OBJ). Faces index
 // `vertices` (0-based) counter-clockwise seen from outside.
 struct Polygons {
     std::vector<Vec3> vertices;
     std::vector<std::vector<uint32_t>> faces;
     bool smooth = false;  // smooth-shaded in the export
+
+    // Moves the polygons by m, reversing the faces where m mirrors (so they stay
+    // counter-clockwise seen from outside).
+    void move(const Affine& m) {
+        if (m.is_identity()) return;
+        for (Vec3& v : vertices) v = m.point(v);
+        if (m.det() < 0)
+            for (auto& f : faces) std::reverse(f.begin(), f.end());
+    }
 };
 
 // What the export knows of the whole scene when it makes polygons: the segments of a
@@ -49,6 +77,7 @@ struct ExportFrame {
     int segments = 48;
     Vec3 center;
     Real extent = 1;
+    const std::vector<MeshDesc>* meshes = nullptr;  // the scene's, for instances
 };
 
 }  // namespace rt

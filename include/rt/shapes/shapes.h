@@ -16,28 +16,31 @@
 #include <vector>
 
 #include "rt/core/kind_list.h"
+#include "rt/shapes/instance.h"
 #include "rt/shapes/plane.h"
 #include "rt/shapes/sphere.h"
 
 namespace rt {
 
-enum class ShapeKind : uint32_t { Triangle, Sphere, Plane };
+enum class ShapeKind : uint32_t { Triangle, Sphere, Instance, Plane };
 
 template <class... S>
 using ShapeList = KindList<S...>;
 // The kinds after triangles, in ShapeKind order.
-using Shapes = ShapeList<Sphere, Plane>;
+using Shapes = ShapeList<Sphere, Instance, Plane>;
 
 // ---- Derived from the list ----------------------------------------------------------
 
 // A kind's ShapeKind: 1 + its place in Shapes.
 template <class S>
 inline constexpr ShapeKind kind_of = ShapeKind(1 + IndexIn<S, Shapes>::value);
-static_assert(kind_of<Sphere> == ShapeKind::Sphere && kind_of<Plane> == ShapeKind::Plane,
+static_assert(kind_of<Sphere> == ShapeKind::Sphere && kind_of<Instance> == ShapeKind::Instance &&
+                  kind_of<Plane> == ShapeKind::Plane,
               "ShapeKind lists the kinds of Shapes, in its order");
 
 inline constexpr size_t kShapeKindCount = 1 + Shapes::size;  // triangles too
-inline constexpr ShapeKind kShapeKinds[] = {ShapeKind::Triangle, ShapeKind::Sphere, ShapeKind::Plane};
+inline constexpr ShapeKind kShapeKinds[] = {ShapeKind::Triangle, ShapeKind::Sphere, ShapeKind::Instance,
+                                            ShapeKind::Plane};
 static_assert(std::size(kShapeKinds) == kShapeKindCount, "kShapeKinds lists every kind, in order");
 
 // f(S{}) for each kind S of Shapes, in order (a default-constructed S as a tag).

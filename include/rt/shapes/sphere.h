@@ -1,10 +1,13 @@
 // A sphere (spec 3, "Sphere"): Objects/Sphere, its Center a vertex id, its Radius > 0.
+// Under Transformations it stays a sphere in its own space and is intersected there,
+// so a non-uniform scaling makes an exact ellipsoid (docs/transformations.md).
 #pragma once
 #include <algorithm>
 #include <cmath>
 #include <utility>
 
 #include "rt/bvh/bvh.h"
+#include "rt/core/affine.h"
 #include "rt/shapes/shape.h"
 
 namespace rt {
@@ -12,6 +15,7 @@ namespace rt {
 struct SphereDesc : ShapeDescBase {
     Vec3 center;
     Real radius = 1;
+    Affine transform;  // the sphere as written -> the world
 };
 
 // Nearest intersection of a unit-direction ray with a sphere in (tmin, tmax).
@@ -42,14 +46,18 @@ inline bool intersect_sphere(const Ray& r, Vec3 centre, Real radius, Real tmin, 
 struct Sphere {
     using Desc = SphereDesc;
     static constexpr const char* kKey = "Sphere";
-    static constexpr const char* kKeys[] = {"_id", "Material", "Center", "Radius"};
+    static constexpr const char* kKeys[] = {"_id", "Material", "Center", "Radius", "Transformations"};
     static constexpr const char* kNoun = "sphere";
     static constexpr const char* kNouns = "spheres";
     static constexpr bool kBounded = true;
+    static constexpr bool kReadAsShape = true;
 
     Vec3 center;
     Real radius;
     uint32_t material;
+    // Transformed: world -> the space where it is the unit sphere about the origin.
+    bool transformed = false;
+    Affine to_unit;
 
     // `r` reads this entry's fields by key (the loader's checks and messages).
     template <class Reader>
@@ -57,24 +65,60 @@ struct Sphere {
         d.center = r.vertex("Center");
         d.radius = r.positive("Radius");
     }
-    static Sphere build(const Desc& d) { return {d.center, d.radius, d.material}; }
+    static void transform(Desc& d, const Affine& m) { d.transform = m * d.transform; }
+    static Sphere build(const Desc& d, const BuildInputs&) {
+        Sphere s{d.center, d.radius, d.material, false, Affine{}};
+        if (!d.transform.is_identity()) {
+            s.transformed = true;
+            s.to_unit = Affine::scaling(1 / double(d.radius), 1 / double(d.radius), 1 / double(d.radius)) *
+                        Affine::translation(-double(d.center.x), -double(d.center.y), -double(d.center.z)) *
+                        d.transform.inverse();
+        }
+        return s;
+    }
 
     Box bounds() const {
+        if (transformed) {  // the unit cube about the unit sphere, moved to the world
+            const Affine to_world = to_unit.inverse();
+            Vec3 lo{Real(HUGE_VAL), Real(HUGE_VAL), Real(HUGE_VAL)}, hi = -lo;
+            for (int c = 0; c < 8; ++c) {
+                const Vec3 p = to_world.point(
+                    {c & 1 ? Real(1) : Real(-1), c & 2 ? Real(1) : Real(-1), c & 4 ? Real(1) : Real(-1)});
+                lo = vmin(lo, p);
+                hi = vmax(hi, p);
+            }
+            return Box::around(lo, hi);
+        }
         const Vec3 r{radius, radius, radius};
         return Box::around(center - r, center + r);
     }
-    bool intersect(const Ray& ray, Real tmin, Real tmax, Real& t) const {
-        return intersect_sphere(ray, center, radius, tmin, tmax, t);
+    template <bool kCull, bool kShadow>
+    bool intersect(const Ray& ray, Real tmin, Real tmax, Real& t, Real*, uint32_t&) const {
+        if (!transformed) return intersect_sphere(ray, center, radius, tmin, tmax, t);
+        // In the unit sphere's space the direction has length `len`, so the unit-speed
+        // distance s there is t * len.
+        const Vec3 d = to_unit.vector(ray.dir);
+        const Real len = length(d);
+        Real s;
+        if (!intersect_sphere({to_unit.point(ray.org), d / len}, Vec3{0, 0, 0}, 1, tmin * len, tmax * len, s))
+            return false;
+        t = s / len;
+        return t > tmin && t < tmax;
     }
-    Surface surface(Vec3 p) const {
+    Surface surface(Vec3 p, const Real*, uint32_t) const {
+        if (transformed) {
+            const Vec3 n = normalize(to_unit.transposed_vector(to_unit.point(p)));
+            return {n, n, material};
+        }
         const Vec3 n = (p - center) / radius;
         return {n, n, material};
     }
 
     template <class Add>
-    static void extent(const Desc& d, Add&& add) {
-        add(d.center - Vec3{d.radius, d.radius, d.radius});
-        add(d.center + Vec3{d.radius, d.radius, d.radius});
+    static void extent(const Desc& d, const std::vector<MeshDesc>&, Add&& add) {
+        for (int c = 0; c < 8; ++c)
+            add(d.transform.point(d.center + Vec3{c & 1 ? d.radius : -d.radius, c & 2 ? d.radius : -d.radius,
+                                                  c & 4 ? d.radius : -d.radius}));
     }
     // A UV sphere: rings of constant polar angle from +y; quads (a b c d) run along the
     // ring, then down: counter-clockwise seen from outside.
@@ -101,6 +145,7 @@ struct Sphere {
             for (int k = 0; k < segments; ++k)
                 out.faces.push_back({at(r, k), at(r, k + 1), at(r + 1, k + 1), at(r + 1, k)});
         for (int k = 0; k < segments; ++k) out.faces.push_back({at(rings - 1, k), at(rings - 1, k + 1), south});
+        out.move(d.transform);
         return out;
     }
 };

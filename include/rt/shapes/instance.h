@@ -1,0 +1,69 @@
+// A mesh instance (Objects/MeshInstance): the triangles of a mesh shown again under a
+// transformation of their own, without a copy. The mesh is kept once, in its own
+// (object) space, with a BVH of its own; the scene's BVH holds each instance as one
+// box, and a ray that enters it is carried into object space by the inverse matrix
+// and traced through the mesh's BVH (the two-level scheme of pbrt and Embree). The
+// direction is not renormalised, so t is the same in both spaces.
+//
+// A mesh that any instance shows is itself drawn as an instance of its object-space
+// triangles (an InstanceDesc with key "Mesh"), so its triangles exist once. What the scene
+// file's _baseMeshId and _resetTransform mean: docs/transformations.md.
+#pragma once
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "rt/bvh/bvh.h"
+#include "rt/core/affine.h"
+#include "rt/shapes/shape.h"
+
+namespace rt {
+
+struct InstanceDesc : ShapeDescBase {
+    uint32_t mesh = 0;  // into SceneDesc::meshes: the triangles it shows
+    Affine transform;   // the mesh as written -> the world
+};
+
+struct Instance {
+    using Desc = InstanceDesc;
+    static constexpr const char* kKey = "MeshInstance";
+    static constexpr const char* kKeys[] = {"_id", "_baseMeshId", "_resetTransform", "Material", "Transformations"};
+    static constexpr const char* kNoun = "instance";
+    static constexpr const char* kNouns = "instances";
+    static constexpr bool kBounded = true;
+    // The loader reads Objects/MeshInstance with the meshes it refers to.
+    static constexpr bool kReadAsShape = false;
+
+    const Scene* mesh = nullptr;  // the mesh's triangles and BVH, in object space
+    Affine to_object;             // world -> object
+    Box box;                      // world bounds
+    uint32_t material = 0;
+
+    static void transform(Desc& d, const Affine& m) { d.transform = m * d.transform; }
+    static Instance build(const Desc& d, const BuildInputs& in);
+
+    Box bounds() const { return box; }
+    template <bool kCull, bool kShadow>
+    bool intersect(const Ray& ray, Real tmin, Real tmax, Real& t, Real w[3], uint32_t& part) const {
+        return trace(ray, tmin, tmax, kCull, kShadow, t, w, part);
+    }
+    // The mesh's triangle `part` at barycentric weights w, its normals carried to the
+    // world by the inverse transpose.
+    Surface surface(Vec3 p, const Real w[3], uint32_t part) const;
+
+    // Extent and polygons: the mesh's, moved.
+    template <class Add>
+    static void extent(const Desc& d, const std::vector<MeshDesc>& meshes, Add&& add) {
+        for (Vec3 p : mesh_positions(d, meshes)) add(d.transform.point(p));
+    }
+    static Polygons polygons(const Desc& d, const ExportFrame& f);
+
+private:
+    bool trace(const Ray& ray, Real tmin, Real tmax, bool cull, bool shadow, Real& t, Real w[3], uint32_t& part) const;
+    static const std::vector<Vec3>& mesh_positions(const Desc& d, const std::vector<MeshDesc>& meshes);
+};
+
+// A mesh's triangles as polygons, moved by `to_world` (the OBJ export).
+Polygons mesh_polygons(const MeshDesc& m, const Affine& to_world);
+
+}  // namespace rt
