@@ -490,3 +490,33 @@ TEST(Trace, BadSceneIsBadInput) {
         << dump(r);
     EXPECT_EQ(r.out, "");
 }
+
+TEST(Trace, AnInstanceHitNamesItsMeshFaceAndTheObjectSpacePoint) {
+    // Mesh 3 (faces 0 and 1, a quad at z = 0) is drawn by instance 8, moved by
+    // (0, 0, 2) and scaled by 2: the camera ray (0, 0, 5) -> -z hits the instance at
+    // z = 2, t = 3, which is the mesh's point (0, 0, 0) -- on the diagonal: face 0 or 1.
+    const char* scene = R"({"Scene": {
+      "Cameras": {"Camera": {"Position": "0 0 5", "Gaze": "0 0 -1", "Up": "0 1 0",
+        "NearPlane": "-0.1 0.1 -0.1 0.1", "NearDistance": "1", "ImageResolution": "3 3", "ImageName": "c.png"}},
+      "Materials": {"Material": {"AmbientReflectance": "1 1 1"}},
+      "Lights": {"AmbientLight": "10 10 10"},
+      "Transformations": {"Translation": {"_id": "1", "_data": "0 0 2"}, "Scaling": {"_id": "1", "_data": "2 2 2"}},
+      "VertexData": {"_data": "-1 -1 0  1 -1 0  1 1 0  -1 1 0", "_type": "xyz"},
+      "Objects": {"Mesh": {"_id": "3", "Material": "1", "Transformations": "t1 t1 t1",
+                           "Faces": {"_data": "1 2 3  1 3 4", "_type": "triangle"}},
+                  "MeshInstance": {"_id": "8", "_baseMeshId": "3", "_resetTransform": "true",
+                                   "Transformations": "s1 t1"}}}})";
+    TempDir tmp;
+    write_text(tmp / "c.json", scene);
+    const auto [run, doc] = trace_run(tmp / "c.json", "1,1", tmp / "a.json");
+    ASSERT_EQ(run.exit_code, 0) << dump(run);
+    const json& hit = doc["ray"]["hit"];
+    EXPECT_EQ(hit["object"], "MeshInstance 8");
+    EXPECT_NEAR(hit["t"].get<double>(), 3, kTol);
+    const std::string face = hit["object_space"]["face"];
+    EXPECT_TRUE(face == "Mesh 3, face 0" || face == "Mesh 3, face 1") << face;
+    for (int a = 0; a < 3; ++a) EXPECT_NEAR(hit["object_space"]["point"][a].get<double>(), 0, kTol);
+    EXPECT_TRUE(contains(run.out, "in its mesh's own space: " + face + ", point (")) << dump(run);
+    // The mesh itself (moved by t1 three times, to z = 6, behind the camera) is not hit.
+    EXPECT_EQ(run.out.find("hit Mesh 3"), std::string::npos) << dump(run);
+}

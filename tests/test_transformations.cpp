@@ -193,8 +193,8 @@ rt::MeshDesc bumpy_mesh(std::mt19937& rng) {
     for (int r = 0; r <= rings; ++r)
         for (int s = 0; s < segs; ++s) {
             const double th = M_PI * r / rings, ph = 2 * M_PI * s / segs, k = u(rng);
-            m.positions.push_back({Real(k * std::sin(th) * std::cos(ph)), Real(k * std::cos(th)),
-                                   Real(k * std::sin(th) * std::sin(ph))});
+            m.positions.push_back(
+                {Real(k * std::sin(th) * std::cos(ph)), Real(k * std::cos(th)), Real(k * std::sin(th) * std::sin(ph))});
         }
     auto at = [&](int r, int s) { return uint32_t(r * segs + (s % segs)); };
     for (int r = 0; r < rings; ++r)

@@ -42,6 +42,16 @@ std::string material_id(const Scene& scene, size_t index) {
 
 std::string light_name(size_t index) { return "light " + std::to_string(index + 1); }
 
+// An instance's hit in its mesh's own space: the face as the scene file numbers it and
+// the point there. False for other hits.
+bool object_space(const Scene& scene, const RayTrace& r, std::string& face, Vec3& point) {
+    if (r.shape.kind != ShapeKind::Instance) return false;
+    const Instance& inst = scene.geometry.all<Instance>()[r.shape.index];
+    face = inst.mesh->names.name({ShapeKind::Triangle, r.part});
+    point = inst.to_object.point(r.point);
+    return true;
+}
+
 // --- text ------------------------------------------------------------------------------
 
 // Lines of text are at most this long (a terminal's width): longer ones are broken
@@ -98,6 +108,10 @@ public:
         }
         const Material& m = scene_.setup.materials[r.material];
         line(in, "hit " + scene_.names.name(r.shape) + " at t = " + num(r.t) + ", point " + vec(r.point));
+        std::string face;
+        Vec3 object_point;
+        if (object_space(scene_, r, face, object_point))
+            line(in + 1, "in its mesh's own space: " + face + ", point " + vec(object_point));
         line(in, r.front ? "front face: the ray meets the side the outward normals point to"
                          : "back face: the ray meets the inside; the outward normals point away from it");
         line(in + 1, "geometric normal " + vec(r.ng) + ", outward");
@@ -227,6 +241,14 @@ std::string jshadow_ray(const Ray& r, Real tmax) {
         .done();
 }
 
+// An instance's hit in its mesh's space, {"face", "point"}; null for other hits.
+std::string object_space_json(const Scene& scene, const RayTrace& r) {
+    std::string face;
+    Vec3 point;
+    if (!object_space(scene, r, face, point)) return "null";
+    return Object().field("face", jstr(face)).field("point", jvec(point)).done();
+}
+
 std::string jshape(const Scene& scene, ShapeRef s, Real t) {
     return Object().field("object", jstr(scene.names.name(s))).field("t", jnum(t)).done();
 }
@@ -263,6 +285,7 @@ std::string jnode(const Scene& scene, const RayTrace& r) {
                            .field("object", jstr(scene.names.name(r.shape)))
                            .field("t", jnum(r.t))
                            .field("point", jvec(r.point))
+                           .field("object_space", object_space_json(scene, r))
                            .field("geometric_normal", jvec(r.ng))
                            .field("shading_normal", jvec(r.ns))
                            .field("facing_normal", jvec(r.nf))

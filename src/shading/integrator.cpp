@@ -298,6 +298,7 @@ struct Integrator {
         rec.hit = hit;
         if (hit) {
             rec.shape = {h.kind, h.index};
+            rec.part = h.part;
             rec.t = h.t;
         }
         if (cull) rec.culled = nearest_unculled(ray, 0, hit ? h.t : HUGE_VAL, rec.culled_shape, rec.culled_t);

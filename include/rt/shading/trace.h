@@ -49,6 +49,7 @@ struct RayTrace {
 
     bool hit = false;
     ShapeRef shape{ShapeKind::Triangle, 0};
+    uint32_t part = 0;  // an instance's hit: the triangle of its mesh (Hit::part)
     Real t = 0;
     Vec3 point, ng, ns;  // ng, ns: outward geometric and shading normals (the side the vertices wind
                          // counter-clockwise around), whichever side the ray came from
