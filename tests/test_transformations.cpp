@@ -206,9 +206,9 @@ rt::MeshDesc bumpy_mesh(std::mt19937& rng) {
 }
 
 // The same mesh drawn by an instance (two levels, the ray moved) and moved once into the
-// world (one level, the mesh moved): the same hits to rounding, the same faces, the same
-// outward normals and the same culling, under random rotations, non-uniform and mirroring
-// scalings and translations.
+// world by hand (one level, the mesh moved): the same hits to rounding, the same faces, the
+// same outward normals and the same culling, under random rotations, non-uniform and
+// mirroring scalings and translations.
 TEST(TransformationsInstances, TwoLevelsEqualTheMeshMovedOnce) {
     std::mt19937 rng(5);
     std::uniform_real_distribution<double> u(-1, 1), s(0.4, 2);
@@ -218,9 +218,14 @@ TEST(TransformationsInstances, TwoLevelsEqualTheMeshMovedOnce) {
                          Affine::rotation(180 * u(rng), u(rng), u(rng), u(rng) + 1.5) *
                          Affine::scaling((trial % 2 ? -1 : 1) * s(rng), s(rng), s(rng));
         const rt::MeshDesc mesh = bumpy_mesh(rng);
+        // The mesh moved once, by hand: its vertices by m, and where m mirrors each
+        // face's winding reversed, so that counter-clockwise stays the outside.
         rt::SceneDesc baked, instanced;
         baked.meshes.push_back(mesh);
-        baked.meshes[0].transform = m;
+        for (Vec3& p : baked.meshes[0].positions) p = m.point(p);
+        if (m.det() < 0)
+            for (size_t f = 0; f + 2 < mesh.indices.size(); f += 3)
+                std::swap(baked.meshes[0].indices[f + 1], baked.meshes[0].indices[f + 2]);
         instanced.meshes.push_back(mesh);
         instanced.meshes[0].instanced = true;
         rt::InstanceDesc inst;

@@ -21,7 +21,7 @@ const cli::Program kProgram{
     "usage: raytracer [-o DIR] [-j N] [--precision double|float] [--cull|--no-cull]\n"
     "                 [--rounding truncate|nearest] [--min-weight W] [--stats FILE] [-q] [--strict]\n"
     "                 [--repeat N] [--max-depth N] [--epsilon-scale F] [--bvh-... (measurements)]\n"
-    "                 scene.json|scene.xml...\n"
+    "                 [--frames A:B] [--shard K/N] scene.json|scene.xml...\n"
     "       raytracer --trace X,Y [--camera N] [--trace-json FILE] [options] scene.json|scene.xml",
     "Renders every camera of each scene file (JSON, or the course's older XML format when the\n"
     "name ends in .xml) to the image its ImageName names: PNG (.png) or binary PPM (.ppm).\n",
@@ -35,6 +35,7 @@ int raytracer_cli(int argc, char** argv) {
     std::string stats_path;
     PixelTraceRequest request;
     bool trace = false, camera_given = false;
+    FrameSelection frames;
     CLI::App app;
     cli::setup(app, kProgram);
     app.add_option("-o,--output-dir", o.output_dir, "write relative image names under DIR (created if needed)")
@@ -74,6 +75,30 @@ int raytracer_cli(int argc, char** argv) {
     app.add_flag(
         "--strict", o.strict,
         "treat every warning (unknown key, skipped triangle, ...) as an error: exit 1, no image of that scene");
+    app.option_defaults()->group("animations (several scene files, one per frame: docs/animations.md)");
+    cli::add_value(app, "--frames", "A:B",
+                   "render only frames A to B of the scene files given (0-based positions, both included; "
+                   "A or B may be left out)",
+                   [&frames, &o](const std::string& v) {
+                       const size_t colon = v.find(':');
+                       if (colon == std::string::npos) cli::usage_error("--frames needs A:B, got '" + v + "'");
+                       const std::string a = v.substr(0, colon), b = v.substr(colon + 1);
+                       if (!a.empty()) frames.first = size_t(cli::whole_number("--frames A", a, 0, 1 << 30));
+                       if (!b.empty()) frames.last = size_t(cli::whole_number("--frames B", b, 0, 1 << 30));
+                       if (frames.first > frames.last) cli::usage_error("--frames " + v + ": A is after B");
+                       o.frames = true;
+                   });
+    cli::add_value(app, "--shard", "K/N",
+                   "render every N-th of those frames from the K-th (0 <= K < N): N processes (GNU parallel, a "
+                   "Slurm array) with K = 0..N-1 share an animation",
+                   [&frames, &o](const std::string& v) {
+                       const size_t slash = v.find('/');
+                       if (slash == std::string::npos) cli::usage_error("--shard needs K/N, got '" + v + "'");
+                       frames.shards = size_t(cli::whole_number("--shard N", v.substr(slash + 1), 1, 1 << 30));
+                       frames.shard =
+                           size_t(cli::whole_number("--shard K", v.substr(0, slash), 0, int(frames.shards) - 1));
+                       o.frames = true;
+                   });
     app.option_defaults()->group("for measurements (the defaults are the scene's values and the tuned BVH)");
     cli::add_whole(app, "--repeat", "N",
                    "load, build and render each scene N times (1..1000); the summary line and --stats give the "
@@ -101,6 +126,8 @@ int raytracer_cli(int argc, char** argv) {
     app.final_callback([&] {
         if (scenes.empty()) cli::usage_error("no scene file given");
         if (trace && scenes.size() > 1) cli::usage_error("--trace takes one scene file");
+        if (trace && o.frames)
+            cli::usage_error("--frames and --shard pick scene files to render; --trace renders nothing");
         if (!trace && (camera_given || !request.json_path.empty()))
             cli::usage_error("--camera and --trace-json need --trace");
         if (trace && o.repeat != 1) cli::usage_error("--repeat times renders; --trace renders nothing");
@@ -121,6 +148,16 @@ int raytracer_cli(int argc, char** argv) {
         }
     }
 
+    if (o.frames) {
+        const size_t given = scenes.size();
+        scenes = select_frames(scenes, frames);
+        if (scenes.empty()) {
+            if (!o.quiet)
+                std::fprintf(stderr, "no frame to render: %zu scene file%s given, none in this selection\n", given,
+                             given == 1 ? "" : "s");
+            return 0;
+        }
+    }
     const RunReport report = run_scenes(scenes, o);
     bool ok = report.ok;
     if (!stats_path.empty()) {

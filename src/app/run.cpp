@@ -74,7 +74,7 @@ bool report_warnings(const std::vector<std::string>& warnings, const RunOptions&
 std::optional<LoadedScene> load_once(const std::string& scene_path, const RunOptions& o) {
     const auto t0 = std::chrono::steady_clock::now();
     try {
-        SceneDesc desc = load_scene(scene_path);
+        SceneDesc desc = load_scene(scene_path, o.meshes);
         const double ply_s = desc.ply_seconds;
         const double parse_s = seconds_since(t0) - ply_s;
         const size_t warnings = desc.warnings.size();
@@ -89,7 +89,7 @@ std::optional<LoadedScene> load_once(const std::string& scene_path, const RunOpt
         }
         if (!names_ok) return std::nullopt;
         const auto b0 = std::chrono::steady_clock::now();
-        LoadedScene s{build_scene(std::move(desc), o.bvh), {}, {}, warnings};
+        LoadedScene s{build_scene(std::move(desc), o.bvh, o.meshes), {}, {}, warnings};
         const double build_s = seconds_since(b0);
         const double total_s = seconds_since(t0);
         apply_overrides(s.scene, o);
@@ -245,9 +245,24 @@ Timing timing_of(std::vector<double> samples) {
     return {median, samples.front(), samples.back()};
 }
 
+std::vector<std::string> select_frames(const std::vector<std::string>& files, const FrameSelection& s) {
+    std::vector<std::string> out;
+    for (size_t i = s.first, k = 0; i < files.size() && i <= s.last; ++i, ++k)
+        if (k % s.shards == s.shard) out.push_back(files[i]);
+    return out;
+}
+
 RunReport run_scenes(const std::vector<std::string>& scene_paths, const RunOptions& options) {
     RunReport report;
-    for (const std::string& path : scene_paths) report.ok = run_scene(path, options, report.images) && report.ok;
+    MeshCache meshes;
+    RunOptions o = options;
+    if (scene_paths.size() > 1 || o.frames) o.meshes = &meshes;
+    for (const std::string& path : scene_paths) report.ok = run_scene(path, o, report.images) && report.ok;
+    const MeshCache::Counts n = meshes.counts();
+    if (o.meshes && !o.quiet && n.ply_reads > 0)
+        std::fprintf(stderr, "%s: %s read once, then served %zu times; %s built once, then reused %zu times\n",
+                     count_of(scene_paths.size(), "scene file").c_str(), count_of(n.ply_reads, "PLY file").c_str(),
+                     n.ply_reuses, count_of(n.builds, "mesh BVH").c_str(), n.build_reuses);
     return report;
 }
 

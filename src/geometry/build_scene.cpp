@@ -21,17 +21,6 @@ inline bool degenerate(const std::vector<Vec3>& p, uint32_t a, uint32_t b, uint3
     return !(len > 0) || !std::isfinite(len);
 }
 
-// Moves a mesh's positions by its Transformations, once; where they mirror, each face's
-// winding is reversed so that counter-clockwise stays the outside (the inverse transpose's
-// normal, docs/transformations.md).
-void bake_transform(MeshDesc& m) {
-    if (m.transform.is_identity()) return;
-    for (Vec3& p : m.positions) p = m.transform.point(p);
-    if (m.transform.det() < 0)
-        for (size_t f = 0; f + 2 < m.indices.size(); f += 3) std::swap(m.indices[f + 1], m.indices[f + 2]);
-    m.transform = Affine{};
-}
-
 // Meshes with at least this many faces are converted by two threads.
 constexpr size_t kParallelFaces = size_t(1) << 16;
 
@@ -51,7 +40,6 @@ void add_run(Geometry& g, uint32_t first, uint32_t material, bool smooth) {
 // pooling across meshes does not match the references). Flat scenes get no
 // vertex normals at all. The degenerate faces' indices in `m` go to `skipped`.
 void add_mesh(Geometry& s, BuildReport& report, MeshDesc& m, BuildBox* boxes, std::vector<uint32_t>& skipped) {
-    bake_transform(m);
     const uint32_t base = static_cast<uint32_t>(s.positions.size());
     if (base == 0 && s.positions.capacity() <= m.positions.size())
         s.positions = std::move(m.positions);
@@ -242,7 +230,7 @@ void copy_leaf_vertices(Scene& s, ReusableStorage& storage, const BvhBuildOption
 }
 
 // Builds everything, moving or releasing each mesh of `d` once it is copied.
-Scene build(SceneDesc& d, const BvhBuildOptions& bvh) {
+Scene build(SceneDesc& d, const BvhBuildOptions& bvh, MeshCache* cache) {
     Scene s;
     SceneSetup& setup = s.setup;
     setup.background = d.background;
@@ -261,12 +249,18 @@ Scene build(SceneDesc& d, const BvhBuildOptions& bvh) {
     for (size_t i = 0; i < d.meshes.size(); ++i) {
         MeshDesc& m = d.meshes[i];
         if (!m.instanced) continue;
+        // A mesh read through the cache has its BVH there, made by the first frame.
+        const std::string key =
+            m.content_key.empty() ? "" : m.content_key + (m.shading == ShadingMode::Smooth ? "|smooth" : "|flat");
         SceneDesc own;
         own.path = d.path;
         own.meshes.push_back(std::move(m));
         own.meshes[0].transform = Affine{};
         own.meshes[0].instanced = false;
-        auto mesh_scene = std::make_shared<Scene>(build(own, bvh));
+        own.meshes[0].content_key.clear();
+        const auto make = [&own, &bvh] { return build(own, bvh, nullptr); };
+        std::shared_ptr<const Scene> mesh_scene =
+            cache && !key.empty() ? cache->mesh_scene(key, make) : std::make_shared<const Scene>(make());
         s.report.degenerate_triangles += mesh_scene->report.degenerate_triangles;
         inputs.mesh_scenes[i] = std::move(mesh_scene);
         m = MeshDesc{};
@@ -315,11 +309,11 @@ Scene build(SceneDesc& d, const BvhBuildOptions& bvh) {
 
 }  // namespace
 
-Scene build_scene(const SceneDesc& d, const BvhBuildOptions& bvh) {
+Scene build_scene(const SceneDesc& d, const BvhBuildOptions& bvh, MeshCache* meshes) {
     SceneDesc copy = d;
-    return build(copy, bvh);
+    return build(copy, bvh, meshes);
 }
 
-Scene build_scene(SceneDesc&& d, const BvhBuildOptions& bvh) { return build(d, bvh); }
+Scene build_scene(SceneDesc&& d, const BvhBuildOptions& bvh, MeshCache* meshes) { return build(d, bvh, meshes); }
 
 }  // namespace rt

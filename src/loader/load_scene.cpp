@@ -9,17 +9,17 @@ namespace rt {
 
 bool is_xml_path(const std::string& path) { return lower_extension(path) == ".xml"; }
 
-SceneDesc parse_scene(const std::string& json_text, const std::string& path) {
-    return scene_from_json(parse_json_tree<nlohmann::json>(json_text, path), path);
+SceneDesc parse_scene(const std::string& json_text, const std::string& path, MeshCache* meshes) {
+    return scene_from_json(parse_json_tree<nlohmann::json>(json_text, path), path, meshes);
 }
 
-SceneDesc parse_scene_xml(const std::string& xml_text, const std::string& path) {
-    return scene_from_json(nlohmann::json(xml_to_json_tree(xml_text, path)), path);
+SceneDesc parse_scene_xml(const std::string& xml_text, const std::string& path, MeshCache* meshes) {
+    return scene_from_json(nlohmann::json(xml_to_json_tree(xml_text, path)), path, meshes);
 }
 
-SceneDesc load_scene(const std::string& path) {
+SceneDesc load_scene(const std::string& path, MeshCache* meshes) {
     const std::string text = read_text_file(path);
-    return is_xml_path(path) ? parse_scene_xml(text, path) : parse_scene(text, path);
+    return is_xml_path(path) ? parse_scene_xml(text, path, meshes) : parse_scene(text, path, meshes);
 }
 
 }  // namespace rt

@@ -19,6 +19,7 @@
 #include "rt/core/affine.h"
 #include "rt/core/error.h"
 #include "rt/io/files.h"
+#include "rt/loader/mesh_cache.h"
 #include "rt/loader/ply.h"
 #include "rt/loader/scene_tree.h"
 #include "rt/loader/spelling.h"
@@ -47,7 +48,8 @@ std::string type_name(const json& v) {
 
 class Loader {
 public:
-    Loader(const std::string& path, SceneDesc& out) : file_(path), dir_(dirname_of(path)), out_(out) {}
+    Loader(const std::string& path, SceneDesc& out, MeshCache* meshes)
+        : file_(path), dir_(dirname_of(path)), out_(out), meshes_(meshes) {}
 
     void load(const json& root) {
         if (!root.is_object()) fail("", std::string("expected a JSON object at the top, got ") + type_name(root));
@@ -87,6 +89,7 @@ public:
 private:
     std::string file_, dir_;
     SceneDesc& out_;
+    MeshCache* meshes_;                                       // an animation's shared meshes, or null
     std::vector<Vec3> vertices_;                              // VertexData, 0-based
     std::unordered_map<std::string, uint32_t> material_ids_;  // _id -> index
     std::unordered_map<std::string, Affine> transforms_;      // "t2", "s1", "r3", "c1" -> its matrix
@@ -609,7 +612,13 @@ private:
                 const auto ply_t0 = std::chrono::steady_clock::now();
                 PlyMesh pm;
                 try {
-                    pm = read_ply(ply_path);
+                    if (meshes_) {
+                        // Copied from the cache: parsed once for all frames.
+                        pm = *meshes_->ply(ply_path, mesh.content_key);
+                        mesh.instanced = true;
+                    } else {
+                        pm = read_ply(ply_path);
+                    }
                 } catch (const InputError& e) {
                     fail(fp + "/_plyFile", e.what());
                 }
@@ -700,16 +709,19 @@ private:
         });
         std::vector<InstanceDesc>& list = out_.all<Instance>();
         for (size_t i = 0; i < instances_.size(); ++i) resolve_instance(i);
-        // The meshes shown, each as an instance of itself, before the MeshInstances.
+        // Meshes that instances show, and every mesh or triangle with Transformations,
+        // each drawn as an instance of its untransformed self, before the MeshInstances:
+        // one rule for all moved triangles (docs/transformations.md).
         for (size_t m = 0; m < out_.meshes.size(); ++m) {
             MeshDesc& mesh = out_.meshes[m];
-            if (!mesh.instanced) continue;
+            if (!mesh.instanced && mesh.transform.is_identity()) continue;
+            mesh.instanced = true;
             InstanceDesc self;
             self.mesh = static_cast<uint32_t>(m);
             self.transform = mesh.transform;
             self.material = mesh.material;
             self.id = mesh.id;
-            self.key = "Mesh";
+            self.key = mesh.triangle_object ? "Triangle" : "Mesh";
             list.push_back(self);
         }
         for (PendingInstance& p : instances_) list.push_back(std::move(p.desc));
@@ -764,10 +776,10 @@ private:
 
 }  // namespace
 
-SceneDesc scene_from_json(const json& root, const std::string& path) {
+SceneDesc scene_from_json(const json& root, const std::string& path, MeshCache* meshes) {
     SceneDesc d;
     d.path = path;
-    Loader(path, d).load(root);
+    Loader(path, d, meshes).load(root);
     return d;
 }
 

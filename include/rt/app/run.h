@@ -14,6 +14,7 @@
 namespace rt {
 
 struct Scene;
+class MeshCache;
 
 struct RunOptions {
     std::string output_dir;    // relative ImageNames go under it (created); "": the current folder
@@ -26,6 +27,10 @@ struct RunOptions {
     double epsilon_scale = 1;  // multiplies every scene's ShadowRayEpsilon
     int repeat = 1;            // --repeat: each scene loaded, built and each image rendered this
                                // many times, for timing; every image is written once
+    bool frames = false;       // --frames or --shard picked the files: an animation's frames
+    // Set by run_scenes for several files or for frames: the meshes they share, each PLY
+    // file parsed and each mesh's BVH built once (rt/loader/mesh_cache.h).
+    MeshCache* meshes = nullptr;
 };
 
 // The seconds a phase took over the --repeat runs.
@@ -83,8 +88,20 @@ struct RunReport {
 
 // Renders every camera of each scene file, in order; a failure stops only that scene
 // (bad input) or that image (an unwritable path). On stderr: warnings and one summary
-// line per image unless `quiet`, one line per error.
+// line per image unless `quiet`, one line per error. Several files (or options.frames)
+// are taken as an animation's frames: the meshes they read from the same PLY files are
+// parsed and built once, and a last line says how often each was reused.
 RunReport run_scenes(const std::vector<std::string>& scene_paths, const RunOptions& options);
+
+// --frames A:B and --shard K/N: which of the scene files given (an animation's frames, in
+// the order given: a shell glob's) one process renders. Frames A to B, 0-based positions,
+// both included (A defaults to the first, B to the last); of those, every N-th from the
+// K-th (0 <= K < N), so that N processes with K = 0 .. N-1 render each frame once.
+struct FrameSelection {
+    size_t first = 0, last = SIZE_MAX;
+    size_t shard = 0, shards = 1;
+};
+std::vector<std::string> select_frames(const std::vector<std::string>& files, const FrameSelection& s);
 
 // raytracer --trace X,Y [--camera N] [--trace-json FILE]: one pixel's ray tree instead of images.
 struct PixelTraceRequest {

@@ -21,6 +21,7 @@
 #include "rt/geometry/geometry.h"
 #include "rt/geometry/leaf_vertices.h"
 #include "rt/geometry/shape_names.h"
+#include "rt/loader/mesh_cache.h"
 #include "rt/loader/scene_desc.h"
 
 namespace rt {
@@ -68,8 +69,10 @@ UninitVector<BuildBox> primitive_boxes(const Geometry& g);
 // (spec 2.10) and builds the BVH (`bvh`: build quality knobs, for measurements).
 // Takes the vertices of the first mesh and releases each mesh of `desc` as soon
 // as it is copied (lower peak memory).
-Scene build_scene(SceneDesc&& desc, const BvhBuildOptions& bvh = {});
+// `meshes`: the cache the scene was loaded with (load_scene), which holds the BVHs of the
+// meshes it read from PLY files, built here the first time.
+Scene build_scene(SceneDesc&& desc, const BvhBuildOptions& bvh = {}, MeshCache* meshes = nullptr);
 // The same on a copy of `desc`.
-Scene build_scene(const SceneDesc& desc, const BvhBuildOptions& bvh = {});
+Scene build_scene(const SceneDesc& desc, const BvhBuildOptions& bvh = {}, MeshCache* meshes = nullptr);
 
 }  // namespace rt

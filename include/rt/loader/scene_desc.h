@@ -42,9 +42,13 @@ struct MeshDesc {
     std::string id;
     // Its Transformations: the positions above as written -> the world.
     Affine transform;
-    // Shown by a MeshInstance: then drawn as an instance of itself too (rt/shapes/instance.h),
-    // its positions kept as written.
+    // Drawn as an instance of itself (rt/shapes/instance.h), its positions kept as
+    // written: shown by a MeshInstance, or moved by Transformations. Otherwise its
+    // transform is the identity.
     bool instanced = false;
+    // Read through a MeshCache: the PLY file's path and content, under which its BVH is
+    // shared by every frame that reads the same file (rt/loader/mesh_cache.h).
+    std::string content_key;
 };
 
 struct SceneDesc {

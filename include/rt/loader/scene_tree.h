@@ -20,6 +20,7 @@
 
 #include <string>
 
+#include "rt/loader/mesh_cache.h"
 #include "rt/loader/scene_desc.h"
 
 namespace rt {
@@ -41,7 +42,7 @@ nlohmann::ordered_json xml_to_json_tree(const std::string& xml_text, const std::
 
 // Walks a scene tree ({"Scene": {...}}) into a SceneDesc. `path` names the file in
 // messages and anchors relative PLY paths. Throws rt::InputError
-// "<path>: <json pointer>: <what>".
-SceneDesc scene_from_json(const nlohmann::json& root, const std::string& path);
+// "<path>: <json pointer>: <what>". `meshes`: see load_scene.
+SceneDesc scene_from_json(const nlohmann::json& root, const std::string& path, MeshCache* meshes = nullptr);
 
 }  // namespace rt
