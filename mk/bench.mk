@@ -14,9 +14,18 @@ $(BENCH_GEN): $(BENCH_GEN_SRC) tests/bench/gen_mesh/gen_mesh.h
 	@mkdir -p $(dir $@)
 	$(CXX) -O2 -std=c++17 -ffp-contract=off -Wall -Wextra -o $@ $(BENCH_GEN_SRC)
 
-.PHONY: bench bench-quick
+.PHONY: bench bench-quick bench-hw2
 bench: raytracer $(BENCH_GEN)
 	python3 tests/bench/bench.py --raytracer ./raytracer --gen-mesh $(BENCH_GEN) $(BENCH_ARGS)
+	python3 tests/bench/assignment2.py --raytracer ./raytracer
+
+# Assignment 2 (tests/bench/assignment2.py): its scenes, the 10,000-instance stress scene
+# against one knot, and an animation in one process against a process per frame; needs
+# build/bench/scenes/knot_1m.ply (make bench-quick generates it). Report: build/bench/hw2.md.
+#   make bench-hw2 HW2_ARGS="--frames 36 --grid 50"
+HW2_ARGS ?=
+bench-hw2: raytracer
+	python3 tests/bench/assignment2.py --raytracer ./raytracer $(HW2_ARGS)
 
 bench-quick: raytracer $(BENCH_GEN)
 	python3 tests/bench/bench.py --raytracer ./raytracer --gen-mesh $(BENCH_GEN) --quick $(BENCH_ARGS)

@@ -41,9 +41,10 @@ TEST(Animation, SelectFramesAndShards) {
 
 // An ASCII PLY: a pyramid, or a taller one (`tall`), so that the two contents differ.
 std::string pyramid_ply(bool tall) {
-    return std::string("ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\n"
-                       "property float z\nelement face 6\nproperty list uchar int vertex_indices\nend_header\n"
-                       "-1 0 -1\n1 0 -1\n1 0 1\n-1 0 1\n0 ") +
+    return std::string(
+               "ply\nformat ascii 1.0\nelement vertex 5\nproperty float x\nproperty float y\n"
+               "property float z\nelement face 6\nproperty list uchar int vertex_indices\nend_header\n"
+               "-1 0 -1\n1 0 -1\n1 0 1\n-1 0 1\n0 ") +
            (tall ? "2" : "1") + " 0\n3 0 2 1\n3 0 3 2\n3 0 1 4\n3 1 2 4\n3 2 3 4\n3 3 0 4\n";
 }
 
@@ -106,8 +107,9 @@ TEST(Animation, ShardsThroughGnuParallelAreTheWholeAnimation) {
     args.insert(args.end(), scenes.begin(), scenes.end());
     const RunResult whole = run_raytracer(args);
     ASSERT_EQ(whole.exit_code, 0) << whole.err;
-    EXPECT_TRUE(contains(whole.err, "8 scene files: 1 PLY file read once, then served 7 times; 1 mesh BVH built "
-                                    "once, then reused 7 times"))
+    EXPECT_TRUE(contains(whole.err,
+                         "8 scene files: 1 PLY file read once, then served 7 times; 1 mesh BVH built "
+                         "once, then reused 7 times"))
         << whole.err;
 
     // Three shards through GNU parallel, which must be installed (.ci/run installs it).

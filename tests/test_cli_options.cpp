@@ -142,7 +142,7 @@ TEST(Cli, UsageErrorsAreOneLinePlusTheUsage) {
         "usage: raytracer [-o DIR] [-j N] [--precision double|float] [--cull|--no-cull]\n"
         "                 [--rounding truncate|nearest] [--min-weight W] [--stats FILE] [-q] [--strict]\n"
         "                 [--repeat N] [--max-depth N] [--epsilon-scale F] [--bvh-... (measurements)]\n"
-        "                 scene.json|scene.xml...\n"
+        "                 [--frames A:B] [--shard K/N] scene.json|scene.xml...\n"
         "       raytracer --trace X,Y [--camera N] [--trace-json FILE] [options] scene.json|scene.xml";
     const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
         {{"--no-such-option", "scene.json"}, "unknown option '--no-such-option'"},

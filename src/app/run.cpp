@@ -225,6 +225,9 @@ bool run_scene(const std::string& scene_path, const RunOptions& o, std::vector<I
 SceneFigures scene_figures(const Scene& scene, const SceneTimes& seconds) {
     SceneFigures f;
     for (ShapeKind k : kShapeKinds) f.shapes[size_t(k)] = scene.geometry.count(k);
+    // Triangles stored: those of the meshes instances draw too, each mesh once.
+    for (const auto& m : scene.geometry.mesh_scenes)
+        f.shapes[size_t(ShapeKind::Triangle)] += m->geometry.triangles.size();
     f.lights = scene.setup.lights.size();
     f.degenerate = scene.report.degenerate_triangles;
     f.bvh_nodes = scene.accel.bvh.nodes.size();

@@ -52,7 +52,8 @@ struct SceneTimes {
 
 // What a built scene holds, as the per-image summary line and --stats report it.
 struct SceneFigures {
-    size_t shapes[kShapeKindCount] = {};  // primitives by ShapeKind (rt/shapes/shapes.h)
+    size_t shapes[kShapeKindCount] = {};  // by ShapeKind (rt/shapes/shapes.h); triangles: those stored,
+                                          // an instanced mesh's once
     size_t lights = 0;
     size_t degenerate = 0;  // triangles skipped at build time
     size_t bvh_nodes = 0;
