@@ -20,8 +20,8 @@ bench: raytracer $(BENCH_GEN)
 	python3 tests/bench/assignment2.py --raytracer ./raytracer
 
 # Assignment 2 (tests/bench/assignment2.py): its scenes, the 10,000-instance stress scene
-# against one knot, and an animation in one process against a process per frame; needs
-# build/bench/scenes/knot_1m.ply (make bench-quick generates it). Report: build/bench/hw2.md.
+# against one 1M-triangle mesh over the same area, and an animation in one process against a process per frame; needs
+# build/bench/scenes/{knot,terrain}_1m.ply (make bench-quick generates them). Report: build/bench/hw2.md.
 #   make bench-hw2 HW2_ARGS="--frames 36 --grid 50"
 HW2_ARGS ?=
 bench-hw2: raytracer

@@ -11,6 +11,7 @@ namespace app {
 
 // Peak resident memory of this process so far, in bytes (getrusage).
 uint64_t peak_rss_bytes();
+uint64_t resident_bytes();  // now (/proc/self/statm); 0 when unknown
 
 // "model name" of the first CPU in /proc/cpuinfo, or "unknown".
 std::string cpu_model();

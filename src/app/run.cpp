@@ -2,6 +2,8 @@
 // render -> write -> record. See rt/app/run.h.
 #include "rt/app/run.h"
 
+#include <malloc.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -91,6 +93,7 @@ std::optional<LoadedScene> load_once(const std::string& scene_path, const RunOpt
         const auto b0 = std::chrono::steady_clock::now();
         LoadedScene s{build_scene(std::move(desc), o.bvh, o.meshes), {}, {}, warnings};
         const double build_s = seconds_since(b0);
+        ::malloc_trim(0);  // the scene file's parse tree and descs, freed: back to the system
         const double total_s = seconds_since(t0);
         apply_overrides(s.scene, o);
         SceneTimes times;
@@ -176,6 +179,7 @@ ImageRecord render_camera(const std::string& scene_path, const LoadedScene& s, s
         progress.clear();
     }
     r.render = timing_of(renders);
+    r.render_rss = app::resident_bytes();
     const auto w0 = std::chrono::steady_clock::now();
     write_image(img, out);
     r.write = timing_of({seconds_since(w0)});

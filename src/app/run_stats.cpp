@@ -23,6 +23,13 @@ uint64_t peak_rss_bytes() {
     return static_cast<uint64_t>(u.ru_maxrss) * 1024;  // Linux: KiB
 }
 
+uint64_t resident_bytes() {
+    std::ifstream f("/proc/self/statm");
+    uint64_t size = 0, resident = 0;
+    if (!(f >> size >> resident)) return 0;
+    return resident * static_cast<uint64_t>(::sysconf(_SC_PAGESIZE));
+}
+
 std::string cpu_model() {
     std::ifstream f("/proc/cpuinfo");
     for (std::string line; std::getline(f, line);) {
@@ -122,6 +129,7 @@ std::string stats_json(const std::vector<ImageRecord>& images, const std::string
                     {"split", r.bvh.sah ? "sah" : "median"},
                     {"collapse", r.bvh.collapse}};
         j["peak_rss_bytes"] = r.peak_rss;
+        j["render_rss_bytes"] = r.render_rss;
         list.push_back(std::move(j));
     }
     doc["images"] = std::move(list);

@@ -485,6 +485,7 @@ void Bvh::build(BuildBox* boxes, size_t count, const BvhBuildOptions& options) {
     depth = 0;
     block = 0;
     extent = 0;
+    bounds = Box{};
     if (count == 0) return;
     const uint32_t n = static_cast<uint32_t>(count);
 
@@ -516,8 +517,11 @@ void Bvh::build(BuildBox* boxes, size_t count, const BvhBuildOptions& options) {
     depth = finish_nodes(nodes);
     for (int i = 0; i < BvhNode::kWidth; ++i) {
         if (nodes[0].child[i] == BvhNode::kEmpty) continue;
-        for (int a = 0; a < 3; ++a)
+        for (int a = 0; a < 3; ++a) {
             extent = std::max(extent, std::max(std::fabs(nodes[0].lo[a][i]), std::fabs(nodes[0].hi[a][i])));
+            bounds.lo[a] = std::min(bounds.lo[a], nodes[0].lo[a][i]);
+            bounds.hi[a] = std::max(bounds.hi[a], nodes[0].hi[a][i]);
+        }
     }
 }
 

@@ -290,9 +290,14 @@ Scene build(SceneDesc& d, const BvhBuildOptions& bvh, MeshCache* cache) {
     }
     for_each_shape([&](auto k) {
         using S = decltype(k);
+        const size_t n = d.all<S>().size();
+        g.all<S>().reserve(n);
+        s.names.ids[size_t(kind_of<S>)].reserve(n);
+        s.names.keys[size_t(kind_of<S>)].reserve(n);
         for (const typename S::Desc& e : d.all<S>()) {
             g.all<S>().push_back(S::build(e, inputs));
-            s.names.labels[size_t(kind_of<S>)].push_back(std::string(e.key ? e.key : S::kKey) + " " + e.id);
+            s.names.ids[size_t(kind_of<S>)].push_back(e.id);
+            s.names.keys[size_t(kind_of<S>)].push_back(e.key);
         }
     });
     for (auto& m : inputs.mesh_scenes)

@@ -21,9 +21,13 @@ std::string ShapeNames::name(ShapeRef s) const {
         }
         return "Mesh " + m.id + ", face " + std::to_string(face);
     }
-    const std::vector<std::string>& named = labels[size_t(s.kind)];
-    if (s.index < named.size()) return named[s.index];
-    return visit_shape<std::string>(s.kind, [&](auto k) { return decltype(k)::kNoun + (" #" + index); });
+    const std::vector<std::string>& named = ids[size_t(s.kind)];
+    return visit_shape<std::string>(s.kind, [&](auto k) {
+        using S = decltype(k);
+        if (s.index >= named.size()) return S::kNoun + (" #" + index);
+        const char* key = keys[size_t(s.kind)][s.index];
+        return std::string(key ? key : S::kKey) + " " + named[s.index];
+    });
 }
 
 }  // namespace rt

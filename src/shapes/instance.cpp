@@ -8,26 +8,21 @@
 namespace rt {
 
 Instance Instance::build(const Desc& d, const BuildInputs& in) {
-    Instance i;
-    i.mesh = in.mesh_scenes.at(d.mesh).get();
-    i.to_object = d.transform.inverse();
-    i.material = d.material;
-    // The world box around the mesh's object-space box, moved.
-    const std::vector<Vec3>& pos = i.mesh->geometry.positions;
-    if (i.mesh->geometry.triangles.empty()) return i;  // an empty box: never entered
-    Vec3 lo = pos[0], hi = pos[0];
-    for (const Vec3& p : pos) {
+    return {in.mesh_scenes.at(d.mesh).get(), d.transform.inverse(), d.material};
+}
+
+Box Instance::bounds() const {
+    const Box& b = mesh->accel.bvh.bounds;
+    if (mesh->geometry.triangles.empty() || !(b.lo[0] <= b.hi[0])) return {};  // never entered
+    const Affine to_world = to_object.inverse();
+    Vec3 lo{Real(HUGE_VAL), Real(HUGE_VAL), Real(HUGE_VAL)}, hi = -lo;
+    for (int c = 0; c < 8; ++c) {
+        const Vec3 p =
+            to_world.point({c & 1 ? b.hi[0] : b.lo[0], c & 2 ? b.hi[1] : b.lo[1], c & 4 ? b.hi[2] : b.lo[2]});
         lo = vmin(lo, p);
         hi = vmax(hi, p);
     }
-    Vec3 wlo{Real(HUGE_VAL), Real(HUGE_VAL), Real(HUGE_VAL)}, whi = -wlo;
-    for (int c = 0; c < 8; ++c) {
-        const Vec3 p = d.transform.point({c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z});
-        wlo = vmin(wlo, p);
-        whi = vmax(whi, p);
-    }
-    i.box = Box::around(wlo, whi);
-    return i;
+    return Box::around(lo, hi);
 }
 
 bool Instance::trace(const Ray& ray, Real tmin, Real tmax, bool cull, bool shadow, Real& t, Real w[3],

@@ -5,9 +5,9 @@
    peak memory, medians of --runs runs. (refrender, the yardstick of bench.py, ignores
    Transformations and MeshInstance, so it renders other images: it is not timed here.)
 2. The instancing stress scene: a grid of --grid x --grid copies of the 1M-triangle knot
-   (gen_mesh's knot_1m.ply), the mesh itself and MeshInstances, against one knot scaled to
-   fill the same part of the same view: render time, peak memory, and the memory each
-   instance adds.
+   (gen_mesh's knot_1m.ply), the mesh itself and MeshInstances, against one 1M-triangle mesh
+   (terrain_1m.ply) stretched over the same part of the same view: render time, memory, and
+   the memory each instance adds.
 3. One animation (default raven/camera_around_david, 360 frames): every frame by one
    process, against one process per frame, run one after the other (wall time).
 
@@ -41,8 +41,9 @@ def run(cmd, cwd=None):
 
 
 def timed_render(rt, scene, out, runs, extra=()):
-    """Medians over `runs` processes: wall seconds, render seconds (summed over cameras), peak RSS MiB."""
-    walls, renders, rss = [], [], []
+    """Medians over `runs` processes: wall seconds, render seconds (summed over cameras), peak RSS
+    MiB, RSS MiB when the render ended (the render data; what loading freed handed back)."""
+    walls, renders, rss, resident = [], [], [], []
     with tempfile.TemporaryDirectory() as tmp:
         stats = os.path.join(tmp, "stats.json")
         for _ in range(runs):
@@ -51,7 +52,8 @@ def timed_render(rt, scene, out, runs, extra=()):
                 images = json.load(f)["images"]
             renders.append(sum(im["seconds"]["render"] for im in images))
             rss.append(max(im["peak_rss_bytes"] for im in images) / 2**20)
-    return statistics.median(walls), statistics.median(renders), statistics.median(rss)
+            resident.append(max(im["render_rss_bytes"] for im in images) / 2**20)
+    return statistics.median(walls), statistics.median(renders), statistics.median(rss), statistics.median(resident)
 
 
 def hw2_scenes(shared):
@@ -68,7 +70,7 @@ def hw2_scenes(shared):
 
 def stress_scenes(scene_dir, grid):
     """Writes instances_<n>.json (grid x grid knots: the mesh and MeshInstances moved by
-    translations) and instances_single.json (one knot scaled by `grid`, over the same
+    translations) and instances_single.json (one 1M-triangle terrain stretched over the same
     area), both with the same camera; returns their paths."""
     spacing = 320.0  # the knot's box is about 284 x 240 x 272
     side = spacing * grid
@@ -76,9 +78,10 @@ def stress_scenes(scene_dir, grid):
     camera = {"_id": "1", "_type": "lookAt", "Position": f"{centre} {-0.55 * side} {0.75 * side}",
               "GazePoint": f"{centre} {centre} 0", "Up": "0 0 1", "FovY": "50", "NearDistance": "1",
               "ImageResolution": "800 480"}
+    power = 2e8 * grid * grid  # about 100 levels of diffuse on the grid
     lights = {"AmbientLight": "25 25 25",
               "PointLight": [{"_id": "1", "Position": f"{centre} {-side} {2 * side}",
-                              "Intensity": f"{1e6 * grid * grid} {1e6 * grid * grid} {1e6 * grid * grid}"}]}
+                              "Intensity": f"{power} {power} {power}"}]}
     material = {"_id": "1", "AmbientReflectance": "0.15 0.12 0.1", "DiffuseReflectance": "0.55 0.42 0.32",
                 "SpecularReflectance": "0.5 0.5 0.5", "PhongExponent": "40"}
     translations = [{"_id": str(k + 1), "_data": f"{(k % grid) * spacing} {(k // grid) * spacing} 0"}
@@ -92,12 +95,15 @@ def stress_scenes(scene_dir, grid):
             "Mesh": {"_id": "1", "Material": "1", "Transformations": "t1", "Faces": {"_plyFile": "knot_1m.ply"}},
             "MeshInstance": [{"_id": str(k + 1), "_baseMeshId": "1", "_resetTransform": "true",
                               "Transformations": f"t{k + 1}"} for k in range(1, n)]}}}
+    # The same area filled by one 1M-triangle mesh: gen_mesh's terrain (x -1000..1000, y -200..5800,
+    # heights -64..162, as tall as a knot) stretched over the grid.
     one = {"Scene": {
         "Cameras": {"Camera": dict(camera, ImageName="instances_single.png")},
         "Lights": lights, "Materials": {"Material": material},
-        "Transformations": {"Scaling": {"_id": "1", "_data": f"{grid} {grid} {grid}"}},
-        "Objects": {"Mesh": {"_id": "1", "Material": "1", "Transformations": "s1",
-                             "Faces": {"_plyFile": "knot_1m.ply"}}}}}
+        "Transformations": {"Scaling": {"_id": "1", "_data": f"{side / 2000} {side / 6000} 1"},
+                            "Translation": {"_id": "1", "_data": f"{centre} {200 * side / 6000} 0"}},
+        "Objects": {"Mesh": {"_id": "1", "Material": "1", "Transformations": "s1 t1",
+                             "Faces": {"_plyFile": "terrain_1m.ply"}}}}}
     paths = []
     for name, doc in ((f"instances_{n}.json", many), ("instances_single.json", one)):
         path = os.path.join(scene_dir, name)
@@ -126,27 +132,31 @@ def main():
         md += ["## The complete scenes", "",
                "| scene | whole process s | render s | peak MiB |", "| --- | ---: | ---: | ---: |"]
         for scene in hw2_scenes(shared):
-            w, r, m = timed_render(rt, scene, out, a.runs)
+            w, r, m, _ = timed_render(rt, scene, out, a.runs)
             md.append(f"| {os.path.relpath(scene, os.path.join(shared, 'scenes', 'hw2'))} | {w:.3f} | {r:.3f} | "
                       f"{m:.1f} |")
             log(md[-1])
 
-        knot = os.path.join(scene_dir, "knot_1m.ply")
-        if not os.path.isfile(knot):
-            log(f"{knot} is missing: run make bench-quick (or bench.py) once to generate it")
-            return 2
+        for ply in ("knot_1m.ply", "terrain_1m.ply"):
+            if not os.path.isfile(os.path.join(scene_dir, ply)):
+                log(f"{os.path.join(scene_dir, ply)} is missing: run make bench-quick (or bench.py) once to generate it")
+                return 2
         many, one = stress_scenes(scene_dir, a.grid)
         n = a.grid * a.grid
-        wm, rm, mm = timed_render(rt, many, out, a.runs)
-        ws, rs, ms = timed_render(rt, one, out, a.runs)
+        wm, rm, mm, em = timed_render(rt, many, out, a.runs)
+        ws, rs, ms, es = timed_render(rt, one, out, a.runs)
         per = (mm - ms) * 2**20 / (n - 1)
+        per_render = (em - es) * 2**20 / (n - 1)
         md += ["", "## Instancing stress", "",
-               f"{n:,} copies of the 1M-triangle knot (the mesh and {n - 1:,} MeshInstances), against one knot "
-               f"scaled by {a.grid} over the same area, same camera, 800x480:", "",
-               "| scene | whole process s | render s | peak MiB |", "| --- | ---: | ---: | ---: |",
-               f"| {n:,} instances | {wm:.3f} | {rm:.3f} | {mm:.1f} |",
-               f"| one knot | {ws:.3f} | {rs:.3f} | {ms:.1f} |", "",
-               f"Render time {rm / rs:.2f}x the single knot's; memory {per:.0f} bytes per added instance."]
+               f"{n:,} copies of the 1M-triangle knot (the mesh and {n - 1:,} MeshInstances), against one "
+               f"1M-triangle mesh (gen_mesh's terrain) stretched over the same area, same camera, 800x480:", "",
+               "| scene | whole process s | render s | peak MiB | resident at render MiB |",
+               "| --- | ---: | ---: | ---: | ---: |",
+               f"| {n:,} instances | {wm:.3f} | {rm:.3f} | {mm:.1f} | {em:.1f} |",
+               f"| one mesh | {ws:.3f} | {rs:.3f} | {ms:.1f} | {es:.1f} |", "",
+               f"Render time {rm / rs:.2f}x the single mesh's. Each added instance: {per_render:.0f} bytes of "
+               f"render data (resident at render), {per:.0f} bytes of peak memory (the scene file's parse tree "
+               f"included)."]
         log("\n".join(md[-6:]))
 
         folder = os.path.join(shared, "scenes", "hw2", a.animation)

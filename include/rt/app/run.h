@@ -79,7 +79,9 @@ struct ImageRecord {
     RenderStats render_stats;  // of the last run (every run traces the same rays)
     bool cull = true;
     BvhBuildOptions bvh;
-    uint64_t peak_rss = 0;  // bytes, of the whole process so far
+    uint64_t peak_rss = 0;    // bytes, of the whole process so far
+    uint64_t render_rss = 0;  // bytes resident when the render ended: the scene's render data
+                              // (what loading freed is returned to the system first)
 };
 
 struct RunReport {

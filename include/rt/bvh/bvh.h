@@ -184,6 +184,7 @@ struct Bvh {
     int depth = 0;                // in nodes, root = 1
     uint32_t block = 0;           // the leaf block the SAH priced leaves in (BvhBuildOptions::block_for)
     float extent = 0;             // largest magnitude of the root's bounds (0 when empty)
+    Box bounds;                   // the root's bounds (empty when there are no primitives)
 
     // Builds over `boxes[i]` (one box per primitive id i, n of them), sorting them
     // in place: their contents are unspecified afterwards, their storage the

@@ -18,7 +18,10 @@ struct ShapeNames {
         std::vector<uint32_t> skipped;  // its degenerate faces, not in Geometry (spec 2.10), ascending
     };
     std::vector<Mesh> meshes;
-    std::vector<std::string> labels[kShapeKindCount];  // by ShapeKind ("Sphere 3"); none for triangles
+    // By ShapeKind, none for triangles: each primitive's _id, and the Objects/<key> it was
+    // written under when that is not its kind's (ShapeDescBase::key), else null.
+    std::vector<std::string> ids[kShapeKindCount];
+    std::vector<const char*> keys[kShapeKindCount];
 
     // "Mesh 3, face 1207" (the face's 0-based index in the mesh's PLY or _data, skipped
     // faces counted), "Triangle 4", "Sphere 2" (its kind's key); "triangle #i" (etc.) for a

@@ -36,13 +36,13 @@ struct Instance {
 
     const Scene* mesh = nullptr;  // the mesh's triangles and BVH, in object space
     Affine to_object;             // world -> object
-    Box box;                      // world bounds
     uint32_t material = 0;
 
     static void transform(Desc& d, const Affine& m) { d.transform = m * d.transform; }
     static Instance build(const Desc& d, const BuildInputs& in);
 
-    Box bounds() const { return box; }
+    // The world box around the mesh's box (its BVH root's), moved; empty for an empty mesh.
+    Box bounds() const;
     template <bool kCull, bool kShadow>
     bool intersect(const Ray& ray, Real tmin, Real tmax, Real& t, Real w[3], uint32_t& part) const {
         return trace(ray, tmin, tmax, kCull, kShadow, t, w, part);
