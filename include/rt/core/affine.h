@@ -14,18 +14,12 @@ struct Affine {
     double m[3][4] = {{1, 0, 0, 0}, {0, 1, 0, 0}, {0, 0, 1, 0}};
 
     static Affine translation(double x, double y, double z) {
-        Affine a;
-        a.m[0][3] = x;
-        a.m[1][3] = y;
-        a.m[2][3] = z;
-        return a;
+        const double v[12] = {1, 0, 0, x, 0, 1, 0, y, 0, 0, 1, z};
+        return rows(v);
     }
     static Affine scaling(double x, double y, double z) {
-        Affine a;
-        a.m[0][0] = x;
-        a.m[1][1] = y;
-        a.m[2][2] = z;
-        return a;
+        const double v[12] = {x, 0, 0, 0, 0, y, 0, 0, 0, 0, z, 0};
+        return rows(v);
     }
     // `degrees` counter-clockwise about the axis (x, y, z) seen from its tip (the
     // right-hand rule); the axis need not be unit length but must not be zero.
@@ -48,7 +42,7 @@ struct Affine {
         a.m[2][2] = c + z * z * k;
         return a;
     }
-    // The first twelve of a row-major 4x4 matrix (its last row must be 0 0 0 1).
+    // The first twelve numbers of a row-major 4x4 matrix (its last row must be 0 0 0 1).
     static Affine rows(const double* v) {
         Affine a;
         for (int r = 0; r < 3; ++r)

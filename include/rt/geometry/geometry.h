@@ -92,12 +92,13 @@ struct Geometry {
         return visit_shape<uint32_t>(kind, [this](auto s) { return uint32_t(all<decltype(s)>().size()); });
     }
     // The first primitive id of `kind`.
+    // Straight-line code once inlined (the traversal asks it for every ray).
     uint32_t first_id(ShapeKind kind) const {
-        uint32_t id = 0;
-        for (ShapeKind k : kShapeKinds) {
-            if (k == kind) break;
-            id += count(k);
-        }
+        if (kind == ShapeKind::Triangle) return 0;
+        uint32_t id = static_cast<uint32_t>(triangles.size());
+        for_each_shape([&](auto s) {
+            if (size_t(kind_of<decltype(s)>) < size_t(kind)) id += static_cast<uint32_t>(all<decltype(s)>().size());
+        });
         return id;
     }
     // Ids [0, bounded_count()) are the BVH's primitives.
