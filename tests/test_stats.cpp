@@ -124,6 +124,9 @@ TEST(Stats, JsonHasTheDocumentedFieldsWithPlausibleValues) {
     EXPECT_EQ(im.at("bvh").at("split"), "sah");
     EXPECT_GT(im.at("peak_rss_bytes").get<uint64_t>(), 1u << 20);
     EXPECT_LT(im.at("peak_rss_bytes").get<uint64_t>(), uint64_t(4) << 30);
+    // Resident at the end of the render: something, and never above the peak.
+    EXPECT_GT(im.at("render_rss_bytes").get<uint64_t>(), 1u << 20);
+    EXPECT_LE(im.at("render_rss_bytes").get<uint64_t>(), im.at("peak_rss_bytes").get<uint64_t>());
 }
 
 TEST(Stats, OneRecordPerImageAcrossScenes) {
