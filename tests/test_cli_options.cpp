@@ -110,8 +110,8 @@ TEST(Cli, EveryOptionTakesItsValueInEverySpelling) {
             ASSERT_TRUE(is_png(out + "/s.png", 8, 8)) << join(args);
             json doc = json::parse(read_text(out + ".json"));
             json& im = doc["images"][0];
-            for (const char* varies :
-                 {"seconds", "seconds_min", "seconds_max", "rays_per_second", "peak_rss_bytes", "render_rss_bytes", "image"})
+            for (const char* varies : {"seconds", "seconds_min", "seconds_max", "rays_per_second", "peak_rss_bytes",
+                                       "render_rss_bytes", "image"})
                 im.erase(varies);
             stats.push_back(doc.dump());
             if (i > 0) {
