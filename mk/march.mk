@@ -2,7 +2,8 @@
 # Builds the baseline x86-64 target (MARCH=x86-64, no AVX instruction: checked in the
 # binary's code), runs the whole test suite with it in both precisions, and compares its
 # conformance renders with the native build's byte for byte, each precision with its own
-# (the same PNG writer, so the same bytes mean the same pixels). .ci/run calls it after `make test`; ./raytracer and ./rtconvert are native
+# (the same PNG writer, so the same bytes mean the same pixels); the renders are in
+# <dir>/<precision>/<assignment>/ (tests/test_conformance.cpp). .ci/run calls it after `make test`; ./raytracer and ./rtconvert are native
 # again afterwards.
 MARCH_CHECK_DIR := build/march-check
 
@@ -23,7 +24,7 @@ check-march:
 # "check-march: SKIPPED" loudly, and fails when CI=true.
 .PHONY: check-march-compare
 check-march-compare:
-	@n=0; total=0; for f in $$(ls $(MARCH_CHECK_DIR)/native/*/*.png 2>/dev/null | grep -v "_diff.png$$"); do \
+	@n=0; total=0; for f in $$(ls $(MARCH_CHECK_DIR)/native/*/*/*.png 2>/dev/null | grep -v "_diff.png$$"); do \
 	    total=$$((total+1)); g=$$(echo "$$f" | sed 's|/native/|/x86-64/|'); \
 	    cmp -s "$$f" "$$g" || { echo "check-march: $$f and $$g differ"; n=$$((n+1)); }; \
 	done; \
