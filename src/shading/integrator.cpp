@@ -116,7 +116,8 @@ struct Integrator {
         LightTerm term;
         term.light = li;
         term.d2 = dot(to_light, to_light);
-        term.l = to_light / std::sqrt(term.d2);
+        const Real d = std::sqrt(term.d2);  // the light's distance from p
+        term.l = to_light / d;
         term.ndotl = dot(n, term.l);
         if (lt) {
             lt->light = li;
@@ -127,8 +128,7 @@ struct Integrator {
         // within the rounding error of p counts as 0: a light lying in the
         // surface's plane would otherwise switch the specular term on and off
         // from pixel to pixel (its irradiance is huge that close).
-        const Real noise =
-            8 * std::numeric_limits<Real>::epsilon() * (max_abs(p) + max_abs(light.position)) / std::sqrt(term.d2);
+        const Real noise = 8 * std::numeric_limits<Real>::epsilon() * (max_abs(p) + max_abs(light.position)) / d;
         if (!(term.ndotl > noise)) return term;
         term.facing = true;
         if (lt) lt->facing = true;
@@ -146,14 +146,13 @@ struct Integrator {
         if (!(dist > 2 * eps)) return term;  // a light within 2 eps of the point is never occluded
         ++rays.shadow;
         const Ray shadow{so, so_to_light / dist};
-        const Real reach = std::sqrt(term.d2);
         if (lt) {
             lt->shadow_traced = true;
             lt->shadow = shadow;
-            lt->shadow_tmax = reach;
+            lt->shadow_tmax = d;
         }
         term.query = n_queries;
-        queries[n_queries++] = {shadow, 0, reach, cache ? &cache->last_occluder[li] : nullptr};
+        queries[n_queries++] = {shadow, 0, d, cache ? &cache->last_occluder[li] : nullptr};
         return term;
     }
 
