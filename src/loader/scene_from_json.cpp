@@ -729,7 +729,7 @@ private:
     }
 
     const InstanceDesc& resolve_instance(size_t i) {
-        PendingInstance& p = instances_[i];
+        PendingInstance& p = instances_[i];  // the recursion below does not grow instances_
         if (p.state == 2) return p.desc;
         const std::string bp = p.path + "/_baseMeshId";
         if (p.state == 1) fail(bp, "instances form a cycle through _baseMeshId");
@@ -754,11 +754,10 @@ private:
             base_transform = m.transform;
             base_material = m.material;
         }
-        PendingInstance& q = instances_[i];  // resolve_instance does not grow instances_
-        q.desc.material = find(e, "Material") ? material_ref(e, q.path) : base_material;
+        p.desc.material = find(e, "Material") ? material_ref(e, p.path) : base_material;
         bool reset = false;
         if (const json* r = find(e, "_resetTransform")) {
-            const std::string rp = q.path + "/_resetTransform";
+            const std::string rp = p.path + "/_resetTransform";
             if (r->is_boolean())
                 reset = r->get<bool>();
             else if (text(*r, rp) == "true")
@@ -766,11 +765,11 @@ private:
             else if (text(*r, rp) != "false")
                 fail(rp, "expected true or false, got '" + r->get<std::string>() + "'");
         }
-        const std::optional<Affine> own = transform_ref(e, q.path);
-        q.desc.transform = reset ? own.value_or(Affine{}) : own.value_or(Affine{}) * base_transform;
-        out_.meshes[q.desc.mesh].instanced = true;
-        q.state = 2;
-        return q.desc;
+        const std::optional<Affine> own = transform_ref(e, p.path);
+        p.desc.transform = reset ? own.value_or(Affine{}) : own.value_or(Affine{}) * base_transform;
+        out_.meshes[p.desc.mesh].instanced = true;
+        p.state = 2;
+        return p.desc;
     }
 };
 
