@@ -42,7 +42,7 @@ inline BeforeTree any_hit_before_tree(const Scene& s, const Ray& ray, Real tmin,
         uint32_t part;
         if (hit_prim<false, true>(s, p, *occluder, tmin, tmax, t, w, part)) return BeforeTree::Blocked;
     }
-    br = box_ray(p, s.accel.bvh, tmin);
+    box_ray_into(p, s.accel.bvh, tmin, br);
     return BeforeTree::Traverse;
 }
 

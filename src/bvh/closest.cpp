@@ -58,9 +58,9 @@ struct ClosestSearch {
         tmin = t0;
         best_t = prim_limit = t1;
         box_lim = BoxReal(t1);
-        if (!scene.accel.bvh.nodes.empty()) br = box_ray(p, scene.accel.bvh, t0);
+        if (!scene.accel.bvh.nodes.empty()) box_ray_into(p, scene.accel.bvh, t0, br);
     }
-    void consider(uint32_t gid, Real t, const float* corners, uint32_t stride) {
+    [[gnu::always_inline]] void consider(uint32_t gid, Real t, const float* corners, uint32_t stride) {
         // Ties in t go to the lower id, so the answer does not depend on the BVH.
         if (t < best_t || (t == best_t && gid < best_id)) {
             if (t != best_t) prim_limit = next_up(t);
@@ -83,10 +83,10 @@ struct ClosestSearch {
     // exactly best_t can round a few ulps above it (kTieSlack covers the error of both
     // the slab distances and the triangle's t).
     BoxReal box_limit() const { return box_lim; }
-    int test_node(const BvhNode& n, BoxReal t[kWidth]) const {
+    [[gnu::always_inline]] int test_node(const BvhNode& n, BoxReal t[kWidth]) const {
         return test_boxes(n, br, BoxReal(tmin), box_limit(), t);
     }
-    void test_leaf_at(uint32_t first, uint16_t count) {
+    [[gnu::always_inline]] void test_leaf_at(uint32_t first, uint16_t count) {
         test_leaf<kCull, false>(
             *s, p, first, count, tmin, [this] { return prim_limit; }, w, part,
             [this, count](uint32_t id, Real t, const float* corners) {
@@ -95,7 +95,7 @@ struct ClosestSearch {
             });
     }
     // The unbounded shapes, outside the BVH; then the answer into `hit`.
-    bool finish(Hit& hit) {
+    [[gnu::always_inline]] bool finish(Hit& hit) {
         for_each_shape([&](auto k) {
             using S = decltype(k);
             if constexpr (!S::kBounded) {

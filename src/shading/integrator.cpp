@@ -73,8 +73,8 @@ struct Integrator {
             int n_queries = 0;
             for (int i = 0; i < n; ++i)
                 if (pts[i].lit)
-                    terms[i] = light_term(li, pts[i].p, pts[i].surf.ns, queries, n_queries,
-                                          rec ? &rec->lights.emplace_back() : nullptr);
+                    light_term(terms[i], li, pts[i].p, pts[i].surf.ns, queries, n_queries,
+                               rec ? &rec->lights.emplace_back() : nullptr);
             bool blocked[N];
             any_hits(s, queries, n_queries, blocked);
             for (int i = 0; i < n; ++i) {
@@ -106,15 +106,19 @@ struct Integrator {
         int query = -1;       // its shadow ray's index in the queries, or -1 (none traced)
     };
 
-    // Light li at point p with outward shading normal n: its term, and its shadow ray
-    // appended to queries[0 .. n_queries) when one is traced. `lt`: the recorded
-    // tree's entry, or null.
-    LightTerm light_term(size_t li, Vec3 p, Vec3 n, ShadowQuery* queries, int& n_queries, LightTrace* lt) const {
+    // Light li at point p with outward shading normal n: its term into `term`, and its
+    // shadow ray appended to queries[0 .. n_queries) when one is traced. `lt`: the
+    // recorded tree's entry, or null. The term is written in place, field by field: a
+    // returned one copied into the caller's array is one wide load over narrower stores,
+    // which waits for them to reach the cache.
+    void light_term(LightTerm& term, size_t li, Vec3 p, Vec3 n, ShadowQuery* queries, int& n_queries,
+                    LightTrace* lt) const {
         const SceneSetup& setup = s.setup;
         const PointLight& light = setup.lights[li];
         const Vec3 to_light = light.position - p;
-        LightTerm term;
         term.light = li;
+        term.facing = false;
+        term.query = -1;
         term.d2 = dot(to_light, to_light);
         const Real d = std::sqrt(term.d2);  // the light's distance from p
         term.l = to_light / d;
@@ -129,7 +133,7 @@ struct Integrator {
         // surface's plane would otherwise switch the specular term on and off
         // from pixel to pixel (its irradiance is huge that close).
         const Real noise = 8 * std::numeric_limits<Real>::epsilon() * (max_abs(p) + max_abs(light.position)) / d;
-        if (!(term.ndotl > noise)) return term;
+        if (!(term.ndotl > noise)) return;
         term.facing = true;
         if (lt) lt->facing = true;
         // Shadow ray from p + n * ShadowRayEpsilon (spec 3), never culled. It
@@ -143,7 +147,7 @@ struct Integrator {
         const Vec3 so = p + n * eps;
         const Vec3 so_to_light = light.position - so;
         const Real dist = length(so_to_light);
-        if (!(dist > 2 * eps)) return term;  // a light within 2 eps of the point is never occluded
+        if (!(dist > 2 * eps)) return;  // a light within 2 eps of the point is never occluded
         ++rays.shadow;
         const Ray shadow{so, so_to_light / dist};
         if (lt) {
@@ -153,7 +157,6 @@ struct Integrator {
         }
         term.query = n_queries;
         queries[n_queries++] = {shadow, 0, d, cache ? &cache->last_occluder[li] : nullptr};
-        return term;
     }
 
     // Diffuse and specular of an unshadowed light that faces the point (spec 2.8).

@@ -25,9 +25,18 @@ constexpr int kWidth = BvhNode::kWidth;
 template <class B>
 struct BoxRayOf;
 
-// The box ray of `p` for the test in precision B; tmin is the least t the ray asks for.
+// The box ray of `p` for the test in precision B into `b`; tmin is the least t the ray
+// asks for. Written in place, field by field: the traversals keep it in their search
+// state, and a copy of a returned one (one wide load over the narrower stores that
+// built it) cannot take its bytes from the store buffer and stalls every traversal.
 template <class B>
-BoxRayOf<B> box_ray_of(const RayPre& p, const Bvh& bvh, Real tmin);
+void box_ray_into(const RayPre& p, const Bvh& bvh, Real tmin, BoxRayOf<B>& b);
+template <class B>
+BoxRayOf<B> box_ray_of(const RayPre& p, const Bvh& bvh, Real tmin) {
+    BoxRayOf<B> b;
+    box_ray_into<B>(p, bvh, tmin, b);
+    return b;
+}
 
 // ---- The double test: exact float bounds, slab distances in double -----------------
 
@@ -50,14 +59,12 @@ struct BoxRayOf<double> {
 
 // Double rays are not padded (box_pad, below); tmin is unused.
 template <>
-inline BoxRayOf<double> box_ray_of<double>(const RayPre& p, const Bvh&, Real) {
-    BoxRayOf<double> b;
+inline void box_ray_into<double>(const RayPre& p, const Bvh&, Real, BoxRayOf<double>& b) {
     for (int a = 0; a < 3; ++a) {
         b.org[a] = p.ray.org[a];
         b.inv[a] = 1.0 / double(p.ray.dir[a]);
         b.near_is_hi[a] = std::signbit(b.inv[a]) ? 1 : 0;
     }
-    return b;
 }
 
 // Entry distances of the node's children into `t` (HUGE_VAL for a miss), and a hit
@@ -117,7 +124,7 @@ inline double box_pad(const Bvh& bvh, const Ray& r) {
 // of the slab's subtraction and product (1 + 2^-24 each; docs/precision.md).
 constexpr float kInvWiden = 0x1p-21f;
 // Above this magnitude a bound or origin could make a float subtraction overflow:
-// such rays enter every box (see box_ray_of<float>).
+// such rays enter every box (see box_ray_into<float>).
 constexpr float kBoxDomain = 0x1p125f;
 // Above this magnitude a direction component's float inverse could be subnormal (below
 // FLT_MIN), where rounding is no longer within a factor 1 + u: such rays enter every box
@@ -139,8 +146,7 @@ struct BoxRayOf<float> {
 // which the max and min of test_lanes skip: it enters every box (and empty slots,
 // leaves of no primitives).
 template <>
-inline BoxRayOf<float> box_ray_of<float>(const RayPre& p, const Bvh& bvh, Real tmin) {
-    BoxRayOf<float> b;
+inline void box_ray_into<float>(const RayPre& p, const Bvh& bvh, Real tmin, BoxRayOf<float>& b) {
     // Grown by 1/32 so that the origin's rounding to nearest below (at most u of
     // |org| + pad, under 1/64 of pad) still leaves a pad of at least box_pad.
     const float pad = float(box_pad(bvh, p.ray) * (1 + 1.0 / 32));
@@ -162,7 +168,6 @@ inline BoxRayOf<float> box_ray_of<float>(const RayPre& p, const Bvh& bvh, Real t
     }
     if (!in_domain)
         for (int a = 0; a < 3; ++a) b.inv_near[a] = b.inv_far[a] = std::numeric_limits<float>::quiet_NaN();
-    return b;
 }
 
 // Entry distances of the node's children into `t` (meaningful for hits only), and a
@@ -213,6 +218,9 @@ using BoxLanes = OneLane<float>;
 
 using BoxRay = BoxRayOf<BoxReal>;
 inline BoxRay box_ray(const RayPre& p, const Bvh& bvh, Real tmin) { return box_ray_of<BoxReal>(p, bvh, tmin); }
+inline void box_ray_into(const RayPre& p, const Bvh& bvh, Real tmin, BoxRay& b) {
+    box_ray_into<BoxReal>(p, bvh, tmin, b);
+}
 
 // Alignment of the arrays test_boxes writes. GCC may align such a local array to its
 // size (64 bytes for eight doubles) and then store to it with aligned instructions,

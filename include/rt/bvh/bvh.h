@@ -199,7 +199,7 @@ struct Bvh {
 // every child box of `node` that the exact ray org + t dir, t in [tmin, tmax],
 // enters once the box is grown by box_padding(bvh, ray) on every side (tmin >= 0);
 // it never accepts an empty slot, but for float rays outside the float test's
-// domain (box_test.h, box_ray_of<float>), which enter every slot. Returns the mask of
+// domain (box_test.h, box_ray_into<float>), which enter every slot. Returns the mask of
 // accepted children and their entry distances in t (for accepted ones: in float at
 // most the exact entry rounded up to a float; in double at most a factor 1 + 2^-50
 // above it, three roundings, give or take a few subnormals where it underflows).

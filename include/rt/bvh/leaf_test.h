@@ -1,7 +1,7 @@
 // The leaf kernels of the BVH traversal: the primitives of one leaf against one ray,
 // for closest.cpp and any_hit.cpp. With AVX2, leaves of triangles run the edge stage
 // of the watertight test one register of triangles at a time (rt/bvh/lanes.h).
-// Header-only: the kernels run in the traversal's inner loops and must inline there.
+// Header-only and forced inline: the kernels run in the traversal's inner loops.
 #pragma once
 #include <algorithm>
 #include <cstdint>
@@ -17,8 +17,8 @@ namespace rt::traversal {
 // Tests one BVH primitive; returns true with t (and weights, and an instance's part) on
 // a hit in (tmin, tmax).
 template <bool kCull, bool kShadow = false>
-inline bool hit_prim(const Scene& s, const RayPre& p, uint32_t id, Real tmin, Real tmax, Real& t, Real w[3],
-                     uint32_t& part) {
+[[gnu::always_inline]] inline bool hit_prim(const Scene& s, const RayPre& p, uint32_t id, Real tmin, Real tmax, Real& t,
+                                            Real w[3], uint32_t& part) {
     return s.geometry.intersect<kCull, kShadow>(p, s.geometry.shape_of<true>(id), tmin, tmax, t, w, part);
 }
 
@@ -164,8 +164,9 @@ inline int edges_n(const RayPre& p, const VerticesN& vx, int n, EdgesN& e) {
 // The leaf at prims[first, first + size) from the leaf-order vertices `lv`, as
 // test_leaf (below) does.
 template <bool kCull, bool kShadow, class T, class Limit, class OnHit>
-inline bool test_copied_leaf(const Scene& s, const RayPre& p, const T* lv, uint32_t first, uint32_t size, Real tmin,
-                             const Limit& limit, Real w[3], const OnHit& hit) {
+[[gnu::always_inline]] inline bool test_copied_leaf(const Scene& s, const RayPre& p, const T* lv, uint32_t first,
+                                                    uint32_t size, Real tmin, const Limit& limit, Real w[3],
+                                                    const OnHit& hit) {
     // A leaf's vertices are one block; primitive ids are read only for hits.
     for (uint32_t j0 = 0; j0 < size; j0 += kLeafLanes) {
         const int n = static_cast<int>(std::min<uint32_t>(kLeafLanes, size - j0));
@@ -189,8 +190,8 @@ inline bool test_copied_leaf(const Scene& s, const RayPre& p, const T* lv, uint3
 // again for each test, and hit() returns true to stop early (test_leaf then
 // returns true).
 template <bool kCull, bool kShadow, class Limit, class OnHit>
-inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint16_t count, Real tmin, const Limit& limit,
-                      Real w[3], uint32_t& part, const OnHit& hit) {
+[[gnu::always_inline]] inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint16_t count, Real tmin,
+                                             const Limit& limit, Real w[3], uint32_t& part, const OnHit& hit) {
     const uint32_t size = BvhNode::leaf_size_of(count);
     const uint32_t end = first + size;
     // Separate loops per source of vertices: one loop choosing the source per block
@@ -229,8 +230,8 @@ inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint16_t 
 }
 #else
 template <bool kCull, bool kShadow, class Limit, class OnHit>
-inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint16_t count, Real tmin, const Limit& limit,
-                      Real w[3], uint32_t& part, const OnHit& hit) {
+[[gnu::always_inline]] inline bool test_leaf(const Scene& s, const RayPre& p, uint32_t first, uint16_t count, Real tmin,
+                                             const Limit& limit, Real w[3], uint32_t& part, const OnHit& hit) {
     const uint32_t end = first + BvhNode::leaf_size_of(count);
     for (uint32_t i = first; i < end; ++i) {
         const uint32_t id = s.accel.bvh.prims[i];

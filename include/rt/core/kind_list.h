@@ -23,23 +23,34 @@ struct IndexIn<K, KindList<K, T...>> : std::integral_constant<size_t, 0> {};
 template <class K, class U, class... T>
 struct IndexIn<K, KindList<U, T...>> : std::integral_constant<size_t, 1 + IndexIn<K, KindList<T...>>::value> {};
 
+// The loop and the dispatch are forced inline: they sit in the traversal's and the
+// shading's inner loops, where a call per kind costs (docs/performance.md).
+
 // f(K{}) for each kind K, in order (a default-constructed K as a tag).
 template <class F, class... K>
-void for_each_kind(KindList<K...>, F&& f) {
+[[gnu::always_inline]] inline void for_each_kind(KindList<K...>, F&& f) {
     (f(K{}), ...);
 }
 
-// f(K{}) for the kind at place `index` (none when index >= size: R{}).
-template <class R, class F, class... K>
-R visit_kind(KindList<K...>, size_t index, F&& f) {
-    size_t i = 0;
-    if constexpr (std::is_void_v<R>) {
-        ((index == i++ ? (f(K{}), true) : false) || ...);
+// f(K{}) for the kind at place `index` (none when index >= size: R{}). Each kind's
+// result is returned directly (no default-constructed R assigned afterwards), so a
+// struct result is built once in the caller's slot: an R{} then overwritten piecewise
+// costs store-forwarding stalls on the hot paths (surfaces, material bounces).
+template <class R, class F, class K, class... Rest>
+[[gnu::always_inline]] inline R visit_kind_at(size_t index, F& f) {
+    if (index == 0) return f(K{});
+    if constexpr (sizeof...(Rest) == 0) {
+        if constexpr (std::is_void_v<R>)
+            return;
+        else
+            return R{};
     } else {
-        R r{};
-        ((index == i++ ? (r = f(K{}), true) : false) || ...);
-        return r;
+        return visit_kind_at<R, F, Rest...>(index - 1, f);
     }
+}
+template <class R, class F, class... K>
+[[gnu::always_inline]] inline R visit_kind(KindList<K...>, size_t index, F&& f) {
+    return visit_kind_at<R, F, K...>(index, f);
 }
 
 }  // namespace rt

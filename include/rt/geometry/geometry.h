@@ -144,7 +144,8 @@ struct Geometry {
     // sets them and `part`, the triangle of its mesh). kCull, kShadow: see
     // intersect_triangle.
     template <bool kCull, bool kShadow = false>
-    bool intersect(const RayPre& p, ShapeRef s, Real tmin, Real tmax, Real& t, Real w[3], uint32_t& part) const {
+    [[gnu::always_inline]] bool intersect(const RayPre& p, ShapeRef s, Real tmin, Real tmax, Real& t, Real w[3],
+                                          uint32_t& part) const {
         if (s.kind == ShapeKind::Triangle) {
             const Triangle& tri = triangles[s.index];
             return intersect_triangle<kCull, kShadow>(p, positions[tri.v[0]], positions[tri.v[1]], positions[tri.v[2]],

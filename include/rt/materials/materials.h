@@ -34,13 +34,13 @@ inline constexpr size_t kMaterialTypeCount = Materials::size;
 
 // f(M{}) for each kind M, in order (a default-constructed M as a tag).
 template <class F>
-void for_each_material(F&& f) {
+[[gnu::always_inline]] inline void for_each_material(F&& f) {
     for_each_kind(Materials{}, f);
 }
 
 // f(M{}) for the kind M of `type`.
 template <class R, class F>
-R visit_material(MaterialType type, F&& f) {
+[[gnu::always_inline]] inline R visit_material(MaterialType type, F&& f) {
     return visit_kind<R>(Materials{}, size_t(type), f);
 }
 

@@ -45,7 +45,7 @@ static_assert(std::size(kShapeKinds) == kShapeKindCount, "kShapeKinds lists ever
 
 // f(S{}) for each kind S of Shapes, in order (a default-constructed S as a tag).
 template <class F>
-void for_each_shape(F&& f) {
+[[gnu::always_inline]] inline void for_each_shape(F&& f) {
     for_each_kind(Shapes{}, f);
 }
 
@@ -68,7 +68,7 @@ using ShapeDescVectors = Shapes::Tuple<DescVectorOf>;
 
 // f(S{}) for the kind S of `kind` (not Triangle, which the caller handles).
 template <class R, class F>
-R visit_shape(ShapeKind kind, F&& f) {
+[[gnu::always_inline]] inline R visit_shape(ShapeKind kind, F&& f) {
     return visit_kind<R>(Shapes{}, size_t(kind) - 1, f);
 }
 
