@@ -18,8 +18,15 @@ SceneDesc parse_scene_xml(const std::string& xml_text, const std::string& path, 
 }
 
 SceneDesc load_scene(const std::string& path, MeshCache* meshes) {
-    const std::string text = read_text_file(path);
-    return is_xml_path(path) ? parse_scene_xml(text, path, meshes) : parse_scene(text, path, meshes);
+    // The text is released once parsed: it is not needed while the tree is walked and
+    // the meshes are read (the peak of a large scene's load).
+    nlohmann::json tree;
+    {
+        const std::string text = read_text_file(path);
+        tree = is_xml_path(path) ? nlohmann::json(xml_to_json_tree(text, path))
+                                 : parse_json_tree<nlohmann::json>(text, path);
+    }
+    return scene_from_json(tree, path, meshes);
 }
 
 }  // namespace rt

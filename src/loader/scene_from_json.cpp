@@ -700,6 +700,7 @@ private:
     // the base's, or replace them with _resetTransform "true"; Material, when given,
     // replaces the base's (docs/transformations.md).
     void load_instances(const json& os, const std::string& path) {
+        if (const json* list = find(os, Instance::kKey); list && list->is_array()) instances_.reserve(list->size());
         for_each_item(os, path, Instance::kKey, [&](const json& e, const std::string& ep) {
             check_keys(e, ep, path + "/" + Instance::kKey, Instance::kKeys);
             PendingInstance p{&e, ep, 0, {}};
@@ -709,6 +710,8 @@ private:
         });
         std::vector<InstanceDesc>& list = out_.all<Instance>();
         for (size_t i = 0; i < instances_.size(); ++i) resolve_instance(i);
+        // Sized once: growing by doubling would hold two copies of the list at its peak.
+        list.reserve(list.size() + out_.meshes.size() + instances_.size());
         // Meshes that instances show, and every mesh or triangle with Transformations,
         // each drawn as an instance of its untransformed self, before the MeshInstances:
         // one rule for all moved triangles (docs/transformations.md).
