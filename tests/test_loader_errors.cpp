@@ -12,6 +12,7 @@
 #include "rt/core/error.h"
 #include "rt/loader/load_scene.h"
 #include "rt/loader/scene_desc.h"
+#include "rt/loader/scene_tree.h"
 
 namespace {
 
@@ -215,6 +216,31 @@ TEST(LoaderErrors, MissingPlyFile) {
     json j = sample();
     j["Scene"]["Objects"]["Mesh"]["Faces"] = {{"_plyFile", "meshes/nowhere.ply"}};
     expect_error(j.dump(), "/Scene/Objects/Mesh/Faces", "/nonexistent/rt_loader_test/meshes/nowhere.ply");
+}
+
+TEST(LoaderErrors, PlyFilesAreReadAfterTheTreeIsWalked) {
+    // describe_scene names the file and leaves it unread (the tree can be released
+    // first); read_mesh_files then fails as scene_from_json does, at the same pointer.
+    json j = sample();
+    j["Scene"]["Objects"]["Mesh"]["Faces"] = {{"_plyFile", "meshes/nowhere.ply"}};
+    rt::SceneDesc d = rt::describe_scene(j, kPath);
+    ASSERT_FALSE(d.meshes.empty());  // the Mesh, first; the sample's Triangle after it
+    EXPECT_EQ(d.meshes[0].ply_pointer, "/Scene/Objects/Mesh/Faces/_plyFile");
+    EXPECT_EQ(d.meshes[0].source, "/nonexistent/rt_loader_test/meshes/nowhere.ply");
+    EXPECT_TRUE(d.meshes[0].positions.empty());
+    std::string two_steps, one_step;
+    try {
+        rt::read_mesh_files(d);
+    } catch (const rt::InputError& e) {
+        two_steps = e.what();
+    }
+    try {
+        rt::scene_from_json(j, kPath);
+    } catch (const rt::InputError& e) {
+        one_step = e.what();
+    }
+    EXPECT_NE(two_steps.find(kPath + ": /Scene/Objects/Mesh/Faces/_plyFile: "), std::string::npos) << two_steps;
+    EXPECT_EQ(two_steps, one_step);
 }
 
 TEST(LoaderErrors, NegativeMaxRecursionDepth) {

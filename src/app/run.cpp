@@ -2,8 +2,6 @@
 // render -> write -> record. See rt/app/run.h.
 #include "rt/app/run.h"
 
-#include <malloc.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -20,6 +18,7 @@
 #include "rt/geometry/scene.h"
 #include "rt/image/image.h"
 #include "rt/io/atomic_file.h"
+#include "rt/io/memory.h"
 #include "rt/loader/load_scene.h"
 #include "rt/shading/trace.h"
 
@@ -93,7 +92,7 @@ std::optional<LoadedScene> load_once(const std::string& scene_path, const RunOpt
         const auto b0 = std::chrono::steady_clock::now();
         LoadedScene s{build_scene(std::move(desc), o.bvh, o.meshes), {}, {}, warnings};
         const double build_s = seconds_since(b0);
-        ::malloc_trim(0);  // the scene file's parse tree and descs, freed: back to the system
+        release_free_memory();  // the scene's descs, freed: back to the system
         const double total_s = seconds_since(t0);
         apply_overrides(s.scene, o);
         SceneTimes times;

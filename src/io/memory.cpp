@@ -1,6 +1,9 @@
 #include "rt/io/memory.h"
 
 #include <sys/mman.h>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
 
 #include <algorithm>
 #include <cstdlib>
@@ -23,6 +26,12 @@ void* allocate_bytes(size_t n, size_t align) noexcept {
     // A request: refused on some kernels (or THP turned off), harmless then.
     madvise(p, n / kHuge * kHuge, MADV_HUGEPAGE);
     return p;
+}
+
+void release_free_memory() noexcept {
+#if defined(__GLIBC__)
+    ::malloc_trim(0);
+#endif
 }
 
 }  // namespace rt

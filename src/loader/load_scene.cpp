@@ -3,6 +3,7 @@
 // (rt/loader/scene_tree.h), and scene_from_json turns that tree into a SceneDesc.
 #include "rt/loader/load_scene.h"
 #include "rt/io/files.h"
+#include "rt/io/memory.h"
 #include "rt/loader/scene_tree.h"
 
 namespace rt {
@@ -18,15 +19,21 @@ SceneDesc parse_scene_xml(const std::string& xml_text, const std::string& path, 
 }
 
 SceneDesc load_scene(const std::string& path, MeshCache* meshes) {
-    // The text is released once parsed: it is not needed while the tree is walked and
-    // the meshes are read (the peak of a large scene's load).
-    nlohmann::json tree;
+    // The text is released once parsed, and the tree once walked: neither is needed
+    // while the meshes are read and their BVHs built (the peak of a large scene's load).
+    SceneDesc desc;
     {
-        const std::string text = read_text_file(path);
-        tree = is_xml_path(path) ? nlohmann::json(xml_to_json_tree(text, path))
-                                 : parse_json_tree<nlohmann::json>(text, path);
+        nlohmann::json tree;
+        {
+            const std::string text = read_text_file(path);
+            tree = is_xml_path(path) ? nlohmann::json(xml_to_json_tree(text, path))
+                                     : parse_json_tree<nlohmann::json>(text, path);
+        }
+        desc = describe_scene(tree, path, meshes);
     }
-    return scene_from_json(tree, path, meshes);
+    release_free_memory();
+    read_mesh_files(desc, meshes);
+    return desc;
 }
 
 }  // namespace rt

@@ -1,28 +1,23 @@
-// The scene tree (rt/loader/scene_tree.h) -> SceneDesc. Every value in the course's files is a
-// string ("1 2 3"); numbers are also accepted where one number is expected.
-// Every reference (material ids, vertex ids) is resolved and range-checked
-// here, once; errors name the file and the JSON pointer of the offending value.
+// The scene tree (rt/loader/scene_tree.h) -> SceneDesc. Every reference (material ids,
+// vertex ids, transformations, base meshes) is resolved and range-checked here, once;
+// errors name the file and the JSON pointer of the offending value (json_fields.h).
+// PLY files are named here and read afterwards (mesh_files.cpp), once the tree can be
+// released.
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
 #include <cctype>
-#include <charconv>
-#include <chrono>
 #include <cmath>
 #include <cstring>
-#include <map>
 #include <optional>
 #include <sstream>
 #include <unordered_map>
 
+#include "json_fields.h"
 #include "rt/camera/camera.h"
 #include "rt/core/affine.h"
-#include "rt/core/error.h"
 #include "rt/io/files.h"
-#include "rt/loader/mesh_cache.h"
-#include "rt/loader/ply.h"
 #include "rt/loader/scene_tree.h"
-#include "rt/loader/spelling.h"
 
 namespace rt {
 namespace {
@@ -32,32 +27,19 @@ using nlohmann::json;
 // Largest image we agree to allocate (refused before allocating).
 constexpr long long kMaxPixels = 1LL << 28;
 constexpr int kMaxRecursionDepthLimit = 10000;
-// Every number in a scene (and every PLY coordinate) must lie within +-1e30: the BVH
-// keeps its boxes in float (max ~3.4e38), and squared distances must stay finite.
-constexpr double kMaxMagnitude = 1e30;
 
-// What a JSON value is, for messages: nlohmann's type names ("object", "number", ...)
-// with an article.
-std::string type_name(const json& v) {
-    if (v.is_null()) return "null";
-    if (v.is_discarded()) return "nothing";
-    if (v.is_binary()) return "binary data";  // never parsed from text
-    const std::string name = v.type_name();
-    return (v.is_object() || v.is_array() ? "an " : "a ") + name;
-}
-
-class Loader {
+class Loader : JsonFields {
 public:
     Loader(const std::string& path, SceneDesc& out, MeshCache* meshes)
-        : file_(path), dir_(dirname_of(path)), out_(out), meshes_(meshes) {}
+        : JsonFields(path), dir_(dirname_of(path)), out_(out), meshes_(meshes) {}
 
     void load(const json& root) {
         if (!root.is_object()) fail("", std::string("expected a JSON object at the top, got ") + type_name(root));
-        check_keys(root, "", "", {"Scene"});
+        check_keys(root, "", {"Scene"});
         const json& scene = require(root, "", "Scene");
         const std::string sp = "/Scene";
         expect_object(scene, sp);
-        check_keys(scene, sp, sp,
+        check_keys(scene, sp,
                    {"BackgroundColor", "ShadowRayEpsilon", "IntersectionTestEpsilon", "MaxRecursionDepth", "Cameras",
                     "Lights", "Materials", "Transformations", "VertexData", "Objects"});
 
@@ -80,206 +62,30 @@ public:
         load_lights(scene, sp);
         load_objects(scene, sp);
 
-        for (const auto& [key, u] : unknown_)
-            out_.warnings.push_back(file_ + ": " + key + ": unknown key ignored" +
-                                    (u.count > 1 ? " (" + std::to_string(u.count) + " times)" : "") +
-                                    (u.suggestion.empty() ? "" : " (did you mean " + u.suggestion + "?)"));
+        for (std::string& w : warnings()) out_.warnings.push_back(std::move(w));
     }
 
 private:
-    std::string file_, dir_;
+    std::string dir_;
     SceneDesc& out_;
     MeshCache* meshes_;                                       // an animation's shared meshes, or null
     std::vector<Vec3> vertices_;                              // VertexData, 0-based
     std::unordered_map<std::string, uint32_t> material_ids_;  // _id -> index
     std::unordered_map<std::string, Affine> transforms_;      // "t2", "s1", "r3", "c1" -> its matrix
-    struct Unknown {
-        int count = 0;
-        std::string suggestion;  // the valid key it is a near miss of (rt/loader/spelling.h), or ""
-    };
-    std::map<std::string, Unknown> unknown_;  // generic key path -> occurrences
-
-    [[noreturn]] void fail(const std::string& where, const std::string& what) const {
-        throw InputError(file_ + ": " + (where.empty() ? "/" : where) + ": " + what);
-    }
-
-    static const json* find(const json& obj, const char* key) {
-        auto it = obj.find(key);
-        return it == obj.end() ? nullptr : &*it;
-    }
-
-    // A required key; when it is missing, the error names a near miss of it that the
-    // object has instead ("found 'Raduis' instead").
-    const json& require(const json& obj, const std::string& path, const char* key) const {
-        const json* v = find(obj, key);
-        if (!v) {
-            std::string found;
-            for (auto it = obj.begin(); it != obj.end() && found.empty(); ++it)
-                if (!near_miss(it.key(), {key}).empty()) found = it.key();
-            fail(path + "/" + key,
-                 "required key is missing" + (found.empty() ? "" : " (found '" + found + "' instead)"));
-        }
-        return *v;
-    }
-
-    void expect_object(const json& v, const std::string& path) const {
-        if (!v.is_object()) fail(path, std::string("expected an object, got ") + type_name(v));
-    }
-
-    // Records keys the renderer does not use, each with the valid key it is a near miss
-    // of, if any; `generic` is the path without array indices.
-    void check_keys(const json& obj, const std::string& path, const std::string& generic,
-                    std::initializer_list<const char*> known) {
-        check_keys<std::initializer_list<const char*>>(obj, path, generic, known);
-    }
-    template <class Keys>
-    void check_keys(const json& obj, const std::string& /*path*/, const std::string& generic, const Keys& known) {
-        for (auto it = obj.begin(); it != obj.end(); ++it) {
-            bool ok = false;
-            for (const char* k : known) ok = ok || it.key() == k;
-            if (ok) continue;
-            Unknown& u = unknown_[generic + "/" + it.key()];
-            if (u.count++ == 0)
-                u.suggestion = near_miss(it.key(), std::vector<std::string>(std::begin(known), std::end(known)));
-        }
-    }
-
-    // Calls f(element, path) for a key holding one object or an array of them.
-    template <class F>
-    void for_each_item(const json& parent, const std::string& parent_path, const char* key, F f) {
-        const json* v = find(parent, key);
-        const std::string path = parent_path + "/" + key;
-        if (!v || v->is_null()) return;
-        if (v->is_object()) {
-            f(*v, path);
-        } else if (v->is_array()) {
-            for (size_t i = 0; i < v->size(); ++i) {
-                const json& e = (*v)[i];
-                const std::string ep = path + "/" + std::to_string(i);
-                expect_object(e, ep);
-                f(e, ep);
-            }
-        } else {
-            fail(path, std::string("expected an object or an array of objects, got ") + type_name(*v));
-        }
-    }
-
-    // --- values ---------------------------------------------------------------
-
-    const std::string& text(const json& v, const std::string& path) const {
-        if (!v.is_string()) fail(path, std::string("expected a string, got ") + type_name(v));
-        return v.get_ref<const std::string&>();
-    }
-
-    // Whitespace-separated finite numbers.
-    std::vector<double> numbers(const json& v, const std::string& path) const {
-        std::vector<double> out;
-        if (v.is_number()) {
-            out.push_back(v.get<double>());
-        } else {
-            const std::string& s = text(v, path);
-            const char* p = s.data();
-            const char* end = p + s.size();
-            while (true) {
-                while (p < end && std::isspace(static_cast<unsigned char>(*p))) ++p;
-                if (p == end) break;
-                const char* tok = p;
-                if (*p == '+') ++p;  // from_chars rejects a leading '+'
-                double d;
-                auto r = std::from_chars(p, end, d);
-                if (r.ec == std::errc::result_out_of_range) {
-                    fail(path, "number out of range: '" + std::string(tok, r.ptr) + "'");
-                }
-                if (r.ec != std::errc() || (r.ptr < end && !std::isspace(static_cast<unsigned char>(*r.ptr)))) {
-                    const char* e = tok;
-                    while (e < end && !std::isspace(static_cast<unsigned char>(*e))) ++e;
-                    fail(path, "not a number: '" + std::string(tok, e) + "'");
-                }
-                out.push_back(d);
-                p = r.ptr;
-            }
-        }
-        for (double d : out) {
-            if (!std::isfinite(d)) fail(path, "not a finite number");
-            if (std::fabs(d) > kMaxMagnitude) fail(path, "number beyond +-1e30: " + format_id(d));
-        }
-        return out;
-    }
-
-    std::vector<double> exactly(const json& v, const std::string& path, size_t n) const {
-        std::vector<double> xs = numbers(v, path);
-        if (xs.size() != n)
-            fail(path, "expected " + std::to_string(n) + " number" + (n > 1 ? "s" : "") + ", got " +
-                           std::to_string(xs.size()));
-        return xs;
-    }
-
-    Real real(const json& v, const std::string& path) const { return static_cast<Real>(exactly(v, path, 1)[0]); }
-
-    Real positive(const json& v, const std::string& path) const {
-        const Real r = real(v, path);
-        if (!(r > 0)) fail(path, "must be greater than 0");
-        return r;
-    }
-
-    Real non_negative(const json& v, const std::string& path) const {
-        const Real r = real(v, path);
-        if (r < 0) fail(path, "must not be negative");
-        return r;
-    }
-
-    long long integer(const json& v, const std::string& path) const {
-        const double d = exactly(v, path, 1)[0];
-        if (d != std::floor(d) || std::fabs(d) > 9e15) fail(path, "expected an integer");
-        return static_cast<long long>(d);
-    }
-
-    Vec3 vec3(const json& v, const std::string& path) const {
-        const std::vector<double> xs = exactly(v, path, 3);
-        return {static_cast<Real>(xs[0]), static_cast<Real>(xs[1]), static_cast<Real>(xs[2])};
-    }
-
-    Vec3 nonzero_vec3(const json& v, const std::string& path) const {
-        const Vec3 x = vec3(v, path);
-        if (!(length(x) > 0)) fail(path, "must not be the zero vector");
-        return x;
-    }
-
-    // Colours and reflectances: three numbers, none negative (spec 2.7).
-    Vec3 color(const json& v, const std::string& path) const {
-        const Vec3 c = vec3(v, path);
-        if (c.x < 0 || c.y < 0 || c.z < 0) fail(path, "must not be negative");
-        return c;
-    }
 
     // A 1-based id into a list of `count` items; returns the 0-based index.
     uint32_t vertex_id(double d, const std::string& path) const {
         if (d != std::floor(d)) fail(path, "vertex id must be an integer");
         if (d < 1 || d > static_cast<double>(vertices_.size()))
-            fail(path, "vertex id " + format_id(d) + " out of range (VertexData has " +
+            fail(path, "vertex id " + format_number(d) + " out of range (VertexData has " +
                            std::to_string(vertices_.size()) + " vertices)");
         return static_cast<uint32_t>(d) - 1;
-    }
-
-    static std::string format_id(double d) {
-        std::ostringstream s;
-        s << d;
-        return s.str();
     }
 
     // The VertexData entry a one-id key (Center, Point) names.
     const Vec3& vertex_ref(const json& obj, const std::string& path, const char* key) const {
         const std::string kp = path + "/" + key;
         return vertices_[vertex_id(exactly(require(obj, path, key), kp, 1)[0], kp)];
-    }
-
-    // An object's _id as the file writes it, or its 1-based `position` among its kind
-    // when it has none: how --trace names it. Never an error (renders do not read it).
-    std::string object_id(const json& obj, size_t position) const {
-        const json* v = find(obj, "_id");
-        if (v && v->is_string()) return v->get<std::string>();
-        if (v && v->is_number()) return v->dump();
-        return std::to_string(position);
     }
 
     uint32_t material_ref(const json& obj, const std::string& path) const {
@@ -301,7 +107,7 @@ private:
         std::string path = sp + "/VertexData";
         const json* data = v;
         if (v->is_object()) {
-            check_keys(*v, path, path, {"_data", "_type"});
+            check_keys(*v, path, {"_data", "_type"});
             if (const json* t = find(*v, "_type"); t && text(*t, path + "/_type") != "xyz")
                 fail(path + "/_type", "unsupported vertex data type '" + t->get<std::string>() + "'");
             data = &require(*v, path, "_data");
@@ -325,12 +131,12 @@ private:
         if (!ts || ts->is_null()) return;
         expect_object(*ts, path);
         static constexpr const char* kKinds[] = {"Translation", "Scaling", "Rotation", "Composite"};
-        check_keys(*ts, path, path, kKinds);
+        check_keys(*ts, path, kKinds);
         for (const char* kind : kKinds) {
             const char letter = static_cast<char>(std::tolower(static_cast<unsigned char>(kind[0])));
             size_t position = 0;
             for_each_item(*ts, path, kind, [&](const json& t, const std::string& tp) {
-                check_keys(t, tp, path + "/" + kind, {"_id", "_data"});
+                check_keys(t, path + "/" + kind, {"_id", "_data"});
                 ++position;
                 const std::string id =
                     find(t, "_id") ? std::to_string(integer(*find(t, "_id"), tp + "/_id")) : std::to_string(position);
@@ -421,7 +227,7 @@ private:
         const std::string path = sp + "/Materials";
         if (!ms || ms->is_null()) return;
         expect_object(*ms, path);
-        check_keys(*ms, path, path, {"Material"});
+        check_keys(*ms, path, {"Material"});
         const std::string generic = path + "/Material";
         // The keys every kind shares, then each kind's own (rt/materials/materials.h);
         // the _type words, for the message.
@@ -437,7 +243,7 @@ private:
         });
         if (const size_t last = words.rfind(", "); last != std::string::npos) words.replace(last, 2, " or ");
         for_each_item(*ms, path, "Material", [&](const json& m, const std::string& mp) {
-            check_keys(m, mp, generic, keys);
+            check_keys(m, generic, keys);
             MaterialDesc d;
             d.type = MaterialType::Plain;
             if (const json* t = find(m, "_type")) {
@@ -473,10 +279,10 @@ private:
         const json& cs = require(scene, sp, "Cameras");
         const std::string path = sp + "/Cameras";
         expect_object(cs, path);
-        check_keys(cs, path, path, {"Camera"});
+        check_keys(cs, path, {"Camera"});
         const std::string generic = path + "/Camera";
         for_each_item(cs, path, "Camera", [&](const json& c, const std::string& cp) {
-            check_keys(c, cp, generic,
+            check_keys(c, generic,
                        {"_id", "_type", "Position", "Gaze", "GazePoint", "Up", "NearPlane", "NearDistance", "FovY",
                         "ImageResolution", "ImageName", "Transformations"});
             CameraDesc d;
@@ -495,8 +301,9 @@ private:
                 if (r != std::floor(r) || r < 1)
                     fail(cp + "/ImageResolution", "width and height must be positive integers");
             if (res[0] * res[1] > static_cast<double>(kMaxPixels))
-                fail(cp + "/ImageResolution", "image too large (" + format_id(res[0]) + " x " + format_id(res[1]) +
-                                                  ", at most " + std::to_string(kMaxPixels) + " pixels)");
+                fail(cp + "/ImageResolution", "image too large (" + format_number(res[0]) + " x " +
+                                                  format_number(res[1]) + ", at most " + std::to_string(kMaxPixels) +
+                                                  " pixels)");
             d.width = static_cast<int>(res[0]);
             d.height = static_cast<int>(res[1]);
             d.image_name = text(require(c, cp, "ImageName"), cp + "/ImageName");
@@ -514,7 +321,7 @@ private:
                 const std::vector<double> np = numbers(require(c, cp, "NearPlane"), cp + "/NearPlane");
                 if (np.size() < 4) fail(cp + "/NearPlane", "expected 4 numbers, got " + std::to_string(np.size()));
                 if (np.size() > 4)
-                    out_.warnings.push_back(file_ + ": " + cp + "/NearPlane: " + std::to_string(np.size()) +
+                    out_.warnings.push_back(file() + ": " + cp + "/NearPlane: " + std::to_string(np.size()) +
                                             " numbers, the first 4 used (left right bottom top)");
                 set_near_plane(d, gaze, static_cast<Real>(np[0]), static_cast<Real>(np[1]), static_cast<Real>(np[2]),
                                static_cast<Real>(np[3]));
@@ -540,11 +347,11 @@ private:
         const std::string path = sp + "/Lights";
         if (!ls || ls->is_null()) return;
         expect_object(*ls, path);
-        check_keys(*ls, path, path, {"AmbientLight", "PointLight"});
+        check_keys(*ls, path, {"AmbientLight", "PointLight"});
         if (const json* a = find(*ls, "AmbientLight")) out_.ambient_light = color(*a, path + "/AmbientLight");
         const std::string generic = path + "/PointLight";
         for_each_item(*ls, path, "PointLight", [&](const json& l, const std::string& lp) {
-            check_keys(l, lp, generic, {"_id", "Position", "Intensity", "Transformations"});
+            check_keys(l, generic, {"_id", "Position", "Intensity", "Transformations"});
             Vec3 position = vec3(require(l, lp, "Position"), lp + "/Position");
             if (const std::optional<Affine> m = transform_ref(l, lp)) position = m->point(position);
             out_.point_lights.push_back({position, color(require(l, lp, "Intensity"), lp + "/Intensity")});
@@ -574,11 +381,11 @@ private:
         expect_object(*os, path);
         std::vector<const char*> kinds = {"Mesh", "Triangle"};
         for_each_shape([&](auto k) { kinds.push_back(decltype(k)::kKey); });
-        check_keys(*os, path, path, kinds);
+        check_keys(*os, path, kinds);
 
         size_t meshes = 0, triangles = 0;  // positions among their kind, for object_id
         for_each_item(*os, path, "Mesh", [&](const json& m, const std::string& mp) {
-            check_keys(m, mp, path + "/Mesh", {"_id", "_shadingMode", "Material", "Faces", "Transformations"});
+            check_keys(m, path + "/Mesh", {"_id", "_shadingMode", "Material", "Faces", "Transformations"});
             MeshDesc mesh;
             mesh.material = material_ref(m, mp);
             mesh.id = object_id(m, ++meshes);
@@ -600,37 +407,21 @@ private:
                 return;
             }
             expect_object(faces, fp);
-            check_keys(faces, fp, path + "/Mesh/Faces", {"_data", "_type", "_plyFile"});
+            check_keys(faces, path + "/Mesh/Faces", {"_data", "_type", "_plyFile"});
             if (const json* t = find(faces, "_type"); t && text(*t, fp + "/_type") != "triangle")
                 fail(fp + "/_type", "unsupported face type '" + t->get<std::string>() + "' (expected triangle)");
             const json* ply = find(faces, "_plyFile");
             const json* data = find(faces, "_data");
             if (ply && data) fail(fp, "has both _data and _plyFile");
             if (ply) {
+                // Read once the tree is released (read_mesh_files): the tree and the
+                // mesh are never in memory together.
                 const std::string& rel = text(*ply, fp + "/_plyFile");
-                const std::string ply_path = (!rel.empty() && rel[0] == '/') ? rel : dir_ + rel;
-                const auto ply_t0 = std::chrono::steady_clock::now();
-                PlyMesh pm;
-                try {
-                    if (meshes_) {
-                        // Copied from the cache: parsed once for all frames.
-                        pm = *meshes_->ply(ply_path, mesh.content_key);
-                        mesh.instanced = true;
-                    } else {
-                        pm = read_ply(ply_path);
-                    }
-                } catch (const InputError& e) {
-                    fail(fp + "/_plyFile", e.what());
-                }
-                for (size_t i = 0; i < pm.positions.size(); ++i)
-                    for (int a = 0; a < 3; ++a)
-                        if (!(std::fabs(pm.positions[i][a]) <= kMaxMagnitude))
-                            fail(fp + "/_plyFile", ply_path + ": vertex " + std::to_string(i) +
-                                                       ": coordinate beyond +-1e30: " + format_id(pm.positions[i][a]));
-                mesh.positions = std::move(pm.positions);
-                mesh.indices = std::move(pm.indices);
-                mesh.source = ply_path;
-                out_.ply_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - ply_t0).count();
+                mesh.source = (!rel.empty() && rel[0] == '/') ? rel : dir_ + rel;
+                mesh.ply_pointer = fp + "/_plyFile";
+                // Read through the animation's cache: drawn as an instance of itself,
+                // so that its BVH comes from the cache too.
+                mesh.instanced = meshes_ != nullptr;
             } else if (data) {
                 add_inline_faces(mesh, numbers(*data, fp + "/_data"), fp + "/_data");
                 mesh.source = fp;
@@ -641,7 +432,7 @@ private:
         });
 
         for_each_item(*os, path, "Triangle", [&](const json& t, const std::string& tp) {
-            check_keys(t, tp, path + "/Triangle", {"_id", "Material", "Indices", "Transformations"});
+            check_keys(t, path + "/Triangle", {"_id", "Material", "Indices", "Transformations"});
             MeshDesc mesh;
             mesh.material = material_ref(t, tp);
             mesh.triangle_object = true;
@@ -658,7 +449,7 @@ private:
             if constexpr (S::kReadAsShape) {
                 std::vector<typename S::Desc>& list = out_.all<S>();
                 for_each_item(*os, path, S::kKey, [&](const json& e, const std::string& ep) {
-                    check_keys(e, ep, path + "/" + S::kKey, S::kKeys);
+                    check_keys(e, path + "/" + S::kKey, S::kKeys);
                     typename S::Desc d;
                     d.material = material_ref(e, ep);
                     FieldReader r{*this, e, ep};
@@ -702,7 +493,7 @@ private:
     void load_instances(const json& os, const std::string& path) {
         if (const json* list = find(os, Instance::kKey); list && list->is_array()) instances_.reserve(list->size());
         for_each_item(os, path, Instance::kKey, [&](const json& e, const std::string& ep) {
-            check_keys(e, ep, path + "/" + Instance::kKey, Instance::kKeys);
+            check_keys(e, path + "/" + Instance::kKey, Instance::kKeys);
             PendingInstance p{&e, ep, 0, {}};
             p.desc.id = object_id(e, instances_.size() + 1);
             add_base(p.desc.id, Base{true, static_cast<uint32_t>(instances_.size()), ep});
@@ -778,10 +569,16 @@ private:
 
 }  // namespace
 
-SceneDesc scene_from_json(const json& root, const std::string& path, MeshCache* meshes) {
+SceneDesc describe_scene(const json& root, const std::string& path, MeshCache* meshes) {
     SceneDesc d;
     d.path = path;
     Loader(path, d, meshes).load(root);
+    return d;
+}
+
+SceneDesc scene_from_json(const json& root, const std::string& path, MeshCache* meshes) {
+    SceneDesc d = describe_scene(root, path, meshes);
+    read_mesh_files(d, meshes);
     return d;
 }
 

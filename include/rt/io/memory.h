@@ -24,4 +24,10 @@ inline constexpr size_t kHugePageBytes = size_t(2) << 20;
 // stays in small pages.
 void* allocate_bytes(size_t n, size_t align = alignof(std::max_align_t)) noexcept;
 
+// Hands the free pages of the C heap back to the system (glibc's malloc_trim; nothing
+// elsewhere). Called where many small blocks were just freed, a scene file's parse tree
+// above all: the allocator keeps them otherwise, and the memory of the large arrays
+// allocated next (meshes, BVH) would come on top of them.
+void release_free_memory() noexcept;
+
 }  // namespace rt

@@ -45,4 +45,11 @@ nlohmann::ordered_json xml_to_json_tree(const std::string& xml_text, const std::
 // "<path>: <json pointer>: <what>". `meshes`: see load_scene.
 SceneDesc scene_from_json(const nlohmann::json& root, const std::string& path, MeshCache* meshes = nullptr);
 
+// scene_from_json in two steps, so that the tree can be released between them (the
+// peak of a large scene's load): describe_scene walks the tree and leaves each PLY mesh
+// unread (MeshDesc::ply_pointer set, no positions); read_mesh_files reads them, through
+// `meshes` when given, and checks their coordinates. The same errors as scene_from_json.
+SceneDesc describe_scene(const nlohmann::json& root, const std::string& path, MeshCache* meshes = nullptr);
+void read_mesh_files(SceneDesc& desc, MeshCache* meshes = nullptr);
+
 }  // namespace rt
