@@ -200,6 +200,32 @@ TEST(Trace, ShapeNamesCountSkippedFacesAndUseTheFilesIds) {
     EXPECT_EQ(s.names.name({rt::ShapeKind::Plane, 0}), "Plane 11");
 }
 
+// Instances' names share one buffer (rt/geometry/shape_names.h): each keeps its own _id,
+// whatever the lengths around it, and the key of the entry it came from.
+TEST(Trace, InstanceNamesKeepTheirIdsAndKeys) {
+    const std::string scene = R"({"Scene": {
+      "Cameras": {"Camera": {"Position": "0 0 5", "Gaze": "0 0 -1", "Up": "0 1 0",
+        "NearPlane": "-0.1 0.1 -0.1 0.1", "NearDistance": "1", "ImageResolution": "3 3", "ImageName": "c.png"}},
+      "Materials": {"Material": {"AmbientReflectance": "1 1 1"}},
+      "Transformations": {"Translation": {"_id": "1", "_data": "0 0 2"}},
+      "VertexData": {"_data": "-1 -1 0  1 -1 0  1 1 0  -1 1 0", "_type": "xyz"},
+      "Objects": {"Mesh": {"_id": "3", "Material": "1", "Transformations": "t1",
+                           "Faces": {"_data": "1 2 3  1 3 4", "_type": "triangle"}},
+                  "Triangle": {"_id": "t-17", "Material": "1", "Indices": "1 2 3", "Transformations": "t1"},
+                  "MeshInstance": [{"_id": "a much longer instance name than SSO holds", "_baseMeshId": "3"},
+                                   {"_baseMeshId": "3"},
+                                   {"_id": "", "_baseMeshId": "3"},
+                                   {"_id": 42, "_baseMeshId": "3"}]}}})";
+    const rt::Scene s = rt::build_scene(rt::parse_scene(scene, "/nonexistent/names.json"));
+    const std::vector<std::string> expected = {
+        "Mesh 3",         "Triangle t-17", "MeshInstance a much longer instance name than SSO holds",
+        "MeshInstance 2", "MeshInstance ", "MeshInstance 42"};
+    ASSERT_EQ(s.geometry.count(rt::ShapeKind::Instance), expected.size());
+    for (uint32_t i = 0; i < expected.size(); ++i)
+        EXPECT_EQ(s.names.name({rt::ShapeKind::Instance, i}), expected[i]) << i;
+    EXPECT_EQ(s.names.name({rt::ShapeKind::Instance, 6}), "instance #6");  // past the names: no name
+}
+
 TEST(Trace, PrismShowsTotalInternalReflection) {
     TempDir tmp;
     write_text(tmp / "prism.json", kPrismScene);

@@ -293,12 +293,13 @@ Scene build(SceneDesc& d, const BvhBuildOptions& bvh, MeshCache* cache) {
         const size_t n = d.all<S>().size();
         g.all<S>().reserve(n);
         s.names.ids[size_t(kind_of<S>)].reserve(n);
-        s.names.keys[size_t(kind_of<S>)].reserve(n);
         for (const typename S::Desc& e : d.all<S>()) {
             g.all<S>().push_back(S::build(e, inputs));
-            s.names.ids[size_t(kind_of<S>)].push_back(e.id);
-            s.names.keys[size_t(kind_of<S>)].push_back(e.key);
+            s.names.ids[size_t(kind_of<S>)].push_back(e.id, e.key);
         }
+        // Released before the BVH is built: a scene of many instances would otherwise
+        // hold each one twice at its peak, as desc and as shape.
+        std::vector<typename S::Desc>().swap(d.all<S>());
     });
     for (auto& m : inputs.mesh_scenes)
         if (m) g.mesh_scenes.push_back(std::move(m));
