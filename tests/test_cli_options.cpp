@@ -160,6 +160,9 @@ TEST(Cli, UsageErrorsAreOneLinePlusTheUsage) {
         {{"--precision=Float", "scene.json"}, "--precision takes double or float, got 'Float'"},
         {{"scene.json", "-o"}, "option --output-dir needs a value"},
         {{"-q"}, "no scene file given"},
+        {{"--stats", "scene.json", "other.json"}, "--stats scene.json: that is a scene file; it is not overwritten"},
+        {{"--trace", "1,1", "--trace-json", "scene.json", "scene.json"},
+         "--trace-json scene.json: that is a scene file; it is not overwritten"},
     };
     for (const auto& [args, message] : cases) {
         RunResult r = run_raytracer(args, tmp.path());

@@ -1,7 +1,9 @@
 // The raytracer program in this copy's precision (rt/app/program.h): reads the command
 // line, renders every camera of each scene file (run_scenes) and writes --stats; or
 // traces one pixel (--trace, run_trace).
+#include <cctype>
 #include <cstdio>
+#include <fstream>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -26,6 +28,25 @@ const cli::Program kProgram{
     "Renders every camera of each scene file (JSON, or the course's older XML format when the\n"
     "name ends in .xml) to the image its ImageName names: PNG (.png) or binary PPM (.ppm).\n",
     "exit status: 0 all images written, 1 bad input or an image could not be written, 2 usage error"};
+
+// Whether `path` holds a scene: JSON whose first key is "Scene", or XML with a <Scene>
+// element near its start. Outputs (--stats, --trace-json) never overwrite one: the usual
+// slip is `--stats scene.json more.json`, where the first scene is taken for the file name.
+bool is_scene_file(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::string head(4096, '\0');
+    in.read(head.data(), static_cast<std::streamsize>(head.size()));
+    head.resize(static_cast<size_t>(in.gcount()));
+    size_t i = 0;
+    const auto skip_space = [&] {
+        while (i < head.size() && std::isspace(static_cast<unsigned char>(head[i]))) ++i;
+    };
+    skip_space();
+    if (i < head.size() && head[i] == '<') return head.find("<Scene") != std::string::npos;
+    if (i >= head.size() || head[i++] != '{') return false;
+    skip_space();
+    return head.compare(i, 7, "\"Scene\"") == 0;
+}
 
 }  // namespace
 
@@ -131,6 +152,9 @@ int raytracer_cli(int argc, char** argv) {
         if (!trace && (camera_given || !request.json_path.empty()))
             cli::usage_error("--camera and --trace-json need --trace");
         if (trace && o.repeat != 1) cli::usage_error("--repeat times renders; --trace renders nothing");
+        for (const auto& [flag, out] : {std::pair{"--stats", &stats_path}, {"--trace-json", &request.json_path}})
+            if (!out->empty() && is_scene_file(*out))
+                cli::usage_error(std::string(flag) + " " + *out + ": that is a scene file; it is not overwritten");
     });
     if (const auto status = cli::parse(app, kProgram, argc, argv)) return *status;
     // main() picked this copy of the program from the same arguments (precision_of).
