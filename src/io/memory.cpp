@@ -10,10 +10,17 @@
 #include <new>
 
 namespace rt {
+namespace {
+#if defined(__EMSCRIPTEN__)
+constexpr bool kHugePagesExist = false;  // WebAssembly's linear memory: plain allocations
+#else
+constexpr bool kHugePagesExist = true;
+#endif
+}  // namespace
 
 void* allocate_bytes(size_t n, size_t align) noexcept {
     constexpr size_t kHuge = kHugePageBytes;
-    if (n < kHuge - kHuge / 8) {
+    if (n < kHuge - kHuge / 8 || !kHugePagesExist) {
         if (align <= alignof(std::max_align_t)) return std::malloc(n ? n : 1);
         void* p = nullptr;
         return posix_memalign(&p, std::max(align, sizeof(void*)), n) == 0 ? p : nullptr;
@@ -36,7 +43,7 @@ void release_free_memory() noexcept {
 
 }  // namespace rt
 
-#if !defined(RT_REAL_FLOAT) && !defined(__SANITIZE_ADDRESS__)
+#if !defined(RT_REAL_FLOAT) && !defined(__SANITIZE_ADDRESS__) && !defined(__EMSCRIPTEN__)
 // The global operator new, replaced (C++17 [new.delete.single]) by one that takes its
 // memory from allocate_bytes: every std::vector, string and new-expression of the
 // program gets huge pages when it is large. libstdc++'s other forms (new[], nothrow)
@@ -46,7 +53,7 @@ void release_free_memory() noexcept {
 // malloc and free on both sides. Compiled in the double copy of the library
 // only: the float copy (src/io/memory.cpp again, as namespace rt_float) must not define
 // it a second time. Not under AddressSanitizer (make check-asan), whose own operator
-// new and delete must pair with each other to check them.
+// new and delete must pair with each other to check them, nor in the browser build.
 void* operator new(std::size_t n) {
     for (;;) {
         if (void* p = rt::allocate_bytes(n)) return p;

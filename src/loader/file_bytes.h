@@ -21,7 +21,9 @@ public:
     size_t size() const { return size_; }
 
     static constexpr size_t kMapThreshold = size_t(1) << 20;
-    static constexpr size_t kMaxStreamBytes = size_t(1) << 32;
+    // 4 GiB; 2 GiB where size_t is 32 bits (WebAssembly), so that doubling never wraps.
+    static constexpr size_t kMaxStreamBytes =
+        static_cast<size_t>(sizeof(size_t) > 4 ? uint64_t(1) << 32 : uint64_t(1) << 31);
 
     // Reads (or maps) the file at `path`. Throws rt::InputError "<path>: cannot open: ..."
     // or "<path>: cannot read: ..."; devices are refused, pipes read up to kMaxStreamBytes.

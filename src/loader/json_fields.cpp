@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include "rt/core/error.h"
+#include "rt/core/parse_number.h"
 #include "rt/loader/spelling.h"
 
 namespace rt {
@@ -70,7 +71,7 @@ std::vector<double> JsonFields::numbers(const json& v, const std::string& path) 
             const char* tok = p;
             if (*p == '+') ++p;  // from_chars rejects a leading '+'
             double d;
-            auto r = std::from_chars(p, end, d);
+            auto r = parse_number(p, end, d);
             if (r.ec == std::errc::result_out_of_range)
                 fail(path, "number out of range: '" + std::string(tok, r.ptr) + "'");
             if (r.ec != std::errc() || (r.ptr < end && !std::isspace(static_cast<unsigned char>(*r.ptr)))) {

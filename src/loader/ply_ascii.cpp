@@ -9,6 +9,7 @@
 #include <type_traits>
 
 #include "ply_format.h"
+#include "rt/core/parse_number.h"
 
 namespace rt::ply_reader {
 namespace {
@@ -44,7 +45,7 @@ public:
         const char* e = b + t.size();
         if (b != e && *b == '+') ++b;
         T v = 0;
-        const auto r = std::from_chars(b, e, v);
+        const auto r = parse_number(b, e, v);
         if (real && r.ec == std::errc::result_out_of_range && r.ptr == e)
             in_.fail_line(c.line, "number " + quoted(t) + " out of range in " + record_text(el, rec));
         if (r.ec != std::errc() || r.ptr != e)
