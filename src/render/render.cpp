@@ -6,6 +6,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
+#include <stdexcept>
 #include <thread>
 #include <vector>
 
@@ -28,7 +29,11 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
     static_assert(kPacketW * kPacketH <= kPacket && kTile % kPacketW == 0 && kTile % kPacketH == 0);
     const int tiles_x = (cam.width + kTile - 1) / kTile;
     const int tiles_y = (cam.height + kTile - 1) / kTile;
-    const int tiles = tiles_x * tiles_y;
+    const int all_tiles = tiles_x * tiles_y;
+    const int parts = std::max(1, options.parts), part = options.part;
+    if (part < 0 || part >= parts) throw std::invalid_argument("render: part outside 0..parts-1");
+    // This part's tiles: part, part + parts, ...
+    const int tiles = all_tiles > part ? (all_tiles - part + parts - 1) / parts : 0;
     std::atomic<int> next{0};
     const TraceOptions topt{options.cull, options.min_weight};
     const bool watch = static_cast<bool>(options.progress);
@@ -45,7 +50,8 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
 
     auto work = [&](int worker) {
         TraceCache cache;  // per thread
-        for (int tile; (tile = next.fetch_add(1, std::memory_order_relaxed)) < tiles;) {
+        for (int k; (k = next.fetch_add(1, std::memory_order_relaxed)) < tiles;) {
+            const int tile = part + k * parts;
             const int x0 = (tile % tiles_x) * kTile, y0 = (tile / tiles_x) * kTile;
             const int x1 = std::min(x0 + kTile, cam.width), y1 = std::min(y0 + kTile, cam.height);
             // Neighbouring pixels' camera rays traverse the tree as one packet of

@@ -19,6 +19,10 @@ struct RenderOptions {
     // calling thread then only watches; the `threads` workers render.
     std::function<void(int tiles_done, int tiles_total)> progress;
     double progress_interval = 0.05;
+    // Renders only the 16x16 tiles t (row-major) with t % parts == part; the others stay
+    // black. A page splits one image over workers, or over calls between which it shows
+    // progress, and merges the parts: each pixel is the same whichever part renders it.
+    int part = 0, parts = 1;
 };
 
 // What a render did. The ray counts depend only on the scene, the camera and the

@@ -1,0 +1,31 @@
+// The renderer as the browser page drives it (src/web/, docs/web.md): one scene loaded and
+// built once, then rendered in parts and traced pixel by pixel. Plain C++ with no
+// browser in it, so that it is built and tested natively too; src/web/web_main.cpp
+// exports it to JavaScript in both precisions.
+#pragma once
+#include <cstdint>
+#include <string>
+
+namespace rt::web {
+
+// Loads and builds the scene file at `scene_path` (JSON; PLY files relative to it), with
+// `options_json` ({"cull": true, "max_depth": -1, "epsilon_scale": 1, "min_weight":
+// 1e-4, "rounding": "truncate"}, each key optional, "" for none). Returns "" or the
+// command line's one-line error ("<file>: <place>: <what>"); the previous scene is
+// released either way. Warnings are kept for warnings_json.
+std::string load(const std::string& scene_path, const std::string& options_json);
+
+// The loaded scene's cameras and the warnings its loading raised, as JSON:
+// {"cameras": [{"name": ImageName, "width": W, "height": H}, ...], "warnings": [...]}.
+std::string scene_json();
+
+// Renders the tiles of part `part` of `parts` (rt/render/render.h, RenderOptions::part)
+// of camera `camera` (0-based) into `rgba` (width x height x 4 bytes, row-major): their
+// pixels with alpha 255, every other byte left as it was. Returns "" or an error.
+std::string render_part(int camera, int part, int parts, uint8_t* rgba);
+
+// The ray tree of pixel (x, y) of camera `camera`, as --trace-json writes it; on a bad
+// camera or pixel, {"error": "..."}.
+std::string trace(int camera, int x, int y);
+
+}  // namespace rt::web

@@ -1,0 +1,139 @@
+// The page's renderer session (rt/web/session.h).
+#include "rt/web/session.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <exception>
+#include <optional>
+#include <vector>
+
+#include "rt/core/error.h"
+#include "rt/geometry/scene.h"
+#include "rt/loader/load_scene.h"
+#include "rt/render/render.h"
+#include "rt/shading/trace.h"
+
+namespace rt::web {
+namespace {
+
+struct Session {
+    std::optional<Scene> scene;
+    std::string path;
+    std::vector<std::string> warnings;
+    RenderOptions render;
+};
+
+Session& session() {
+    static Session s;
+    return s;
+}
+
+// The command line's options of the same names (rt/app/run.h, docs/web.md).
+void read_options(const std::string& text, Session& s, int& max_depth, double& epsilon_scale) {
+    if (text.empty()) return;
+    const nlohmann::json o = nlohmann::json::parse(text);
+    if (!o.is_object()) throw UsageError("options: expected a JSON object");
+    for (auto it = o.begin(); it != o.end(); ++it) {
+        const std::string& k = it.key();
+        const nlohmann::json& v = it.value();
+        if (k == "cull" && v.is_boolean()) {
+            s.render.cull = v.get<bool>();
+        } else if (k == "max_depth" && v.is_number_integer() && v.get<long long>() >= -1 &&
+                   v.get<long long>() <= 10000) {
+            max_depth = v.get<int>();
+        } else if (k == "epsilon_scale" && v.is_number() && v.get<double>() > 0) {
+            epsilon_scale = v.get<double>();
+        } else if (k == "min_weight" && v.is_number() && v.get<double>() >= 0 && v.get<double>() <= 1) {
+            s.render.min_weight = v.get<double>();
+        } else if (k == "rounding" && v.is_string() && (v == "truncate" || v == "nearest")) {
+            s.render.rounding = v == "nearest" ? Rounding::Nearest : Rounding::Truncate;
+        } else {
+            throw UsageError("options: " + k + ": unknown option or bad value " + v.dump());
+        }
+    }
+}
+
+}  // namespace
+
+std::string load(const std::string& scene_path, const std::string& options_json) {
+    Session& s = session();
+    s = Session{};
+    try {
+        int max_depth = -1;
+        double epsilon_scale = 1;
+        read_options(options_json, s, max_depth, epsilon_scale);
+        s.render.threads = 1;  // one worker, one thread: the page runs several workers
+        SceneDesc desc = load_scene(scene_path);
+        s.warnings = desc.warnings;
+        s.scene = build_scene(std::move(desc));
+        // As the command line's --max-depth and --epsilon-scale (apply_overrides).
+        if (max_depth >= 0) s.scene->setup.max_recursion_depth = max_depth;
+        s.scene->setup.shadow_ray_epsilon = static_cast<Real>(s.scene->setup.shadow_ray_epsilon * epsilon_scale);
+        s.path = scene_path;
+        return "";
+    } catch (const std::exception& e) {
+        s = Session{};
+        return e.what();
+    }
+}
+
+std::string scene_json() {
+    const Session& s = session();
+    nlohmann::json out = {{"cameras", nlohmann::json::array()}, {"warnings", s.warnings}};
+    if (s.scene)
+        for (const Camera& c : s.scene->setup.cameras)
+            out["cameras"].push_back({{"name", c.image_name}, {"width", c.width}, {"height", c.height}});
+    return out.dump();
+}
+
+std::string render_part(int camera, int part, int parts, uint8_t* rgba) {
+    const Session& s = session();
+    try {
+        if (!s.scene) return "no scene loaded";
+        if (camera < 0 || static_cast<size_t>(camera) >= s.scene->setup.cameras.size()) return "no such camera";
+        RenderOptions o = s.render;
+        o.part = part;
+        o.parts = parts;
+        const Image img = render(*s.scene, static_cast<size_t>(camera), o);
+        // The part's tiles only (render.h: 16x16, row-major), so that parts merge.
+        constexpr int kTile = 16;
+        const int tiles_x = (img.width + kTile - 1) / kTile, tiles_y = (img.height + kTile - 1) / kTile;
+        for (int t = part; t < tiles_x * tiles_y; t += parts) {
+            const int x0 = (t % tiles_x) * kTile, y0 = (t / tiles_x) * kTile;
+            for (int y = y0; y < std::min(y0 + kTile, img.height); ++y)
+                for (int x = x0; x < std::min(x0 + kTile, img.width); ++x) {
+                    const size_t i = static_cast<size_t>(y) * img.width + x;
+                    std::copy(&img.rgb[3 * i], &img.rgb[3 * i] + 3, &rgba[4 * i]);
+                    rgba[4 * i + 3] = 255;
+                }
+        }
+        return "";
+    } catch (const std::exception& e) {
+        return e.what();
+    }
+}
+
+std::string trace(int camera, int x, int y) {
+    const Session& s = session();
+    try {
+        if (!s.scene) return nlohmann::json{{"error", "no scene loaded"}}.dump();
+        const std::vector<Camera>& cams = s.scene->setup.cameras;
+        if (camera < 0 || static_cast<size_t>(camera) >= cams.size())
+            return nlohmann::json{{"error", "no camera " + std::to_string(camera + 1)}}.dump();
+        const Camera& c = cams[static_cast<size_t>(camera)];
+        if (x < 0 || y < 0 || x >= c.width || y >= c.height)
+            return nlohmann::json{{"error", "pixel " + std::to_string(x) + "," + std::to_string(y) +
+                                                " is outside the " + std::to_string(c.width) + "x" +
+                                                std::to_string(c.height) + " image"}}
+                .dump();
+        PixelTrace t = trace_pixel(*s.scene, static_cast<size_t>(camera), x, y,
+                                   TraceOptions{s.render.cull, s.render.min_weight}, s.render.rounding);
+        t.scene = s.path;
+        return trace_json(*s.scene, t);
+    } catch (const std::exception& e) {
+        return nlohmann::json{{"error", e.what()}}.dump();
+    }
+}
+
+}  // namespace rt::web

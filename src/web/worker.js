@@ -1,0 +1,121 @@
+// One renderer in a Web Worker (docs/web.md): its own WebAssembly module (rt.js, rt.wasm)
+// with its own copy of the scene. raytracer.js sends it requests, each with an id that its
+// answer carries back:
+//   {type: "load", files: {path: Uint8Array}, scene, options, precision}
+//       -> {error, info: {cameras: [{name, width, height}], warnings}}
+//   {type: "render", camera, parts: [k, ...], total} -> {type: "progress"} per part, then
+//       {rgba}: the image with the parts' tiles rendered (alpha 255), the rest zero
+//   {type: "trace", camera, x, y} -> {trace}: the --trace-json object
+//   {type: "compare", a, b, width, height, tolerance} -> {figures, heat}
+/* global createRaytracerModule, importScripts */
+"use strict";
+importScripts("rt.js");
+
+const ready = createRaytracerModule();
+let loads = 0;
+
+function cString(M, s) {
+  const n = M.lengthBytesUTF8(s) + 1;
+  const p = M._malloc(n);
+  M.stringToUTF8(s, p, n);
+  return p;
+}
+
+// Calls an export taking strings (freed after) and returning a string.
+function callText(M, name, strings, numbers = []) {
+  const ptrs = strings.map((s) => cString(M, s));
+  try {
+    return M.UTF8ToString(M[name](...ptrs, ...numbers));
+  } finally {
+    ptrs.forEach((p) => M._free(p));
+  }
+}
+
+// Writes the files under a fresh folder and makes it the current one, so that messages
+// name them as the command line run in the scene's folder would.
+function writeFiles(M, files) {
+  const root = "/scene" + ++loads;
+  M.FS.mkdir(root);
+  for (const [path, bytes] of Object.entries(files)) {
+    const parts = path.split("/").filter((p) => p && p !== ".");
+    let dir = root;
+    for (const p of parts.slice(0, -1)) {
+      dir += "/" + p;
+      if (!M.FS.analyzePath(dir).exists) M.FS.mkdir(dir);
+    }
+    M.FS.writeFile(root + "/" + parts.join("/"), bytes);
+  }
+  M.FS.chdir(root);
+  return root;
+}
+
+function removeTree(M, dir) {
+  for (const name of M.FS.readdir(dir)) {
+    if (name === "." || name === "..") continue;
+    const p = dir + "/" + name;
+    if (M.FS.isDir(M.FS.stat(p).mode)) removeTree(M, p);
+    else M.FS.unlink(p);
+  }
+  M.FS.rmdir(dir);
+}
+
+let current = null;  // the folder of the loaded scene's files
+
+const handlers = {
+  load(M, m) {
+    if (current) {
+      M.FS.chdir("/");
+      removeTree(M, current);
+      current = null;
+    }
+    current = writeFiles(M, m.files);
+    const error = callText(M, "_rtw_load", [m.scene, JSON.stringify(m.options || {}), m.precision || "double"]);
+    const info = JSON.parse(M.UTF8ToString(M._rtw_scene()));
+    return { error, info };
+  },
+  render(M, m, post) {
+    const info = JSON.parse(M.UTF8ToString(M._rtw_scene()));
+    const cam = info.cameras[m.camera];
+    const bytes = cam.width * cam.height * 4;
+    const buf = M._malloc(bytes);
+    try {
+      M.HEAPU8.fill(0, buf, buf + bytes);
+      for (const part of m.parts) {
+        const error = M.UTF8ToString(M._rtw_render_part(m.camera, part, m.total, buf));
+        if (error) return { error };
+        post({ type: "progress" });
+      }
+      return { rgba: M.HEAPU8.slice(buf, buf + bytes) };
+    } finally {
+      M._free(buf);
+    }
+  },
+  trace(M, m) {
+    return { trace: JSON.parse(M.UTF8ToString(M._rtw_trace(m.camera, m.x, m.y))) };
+  },
+  compare(M, m) {
+    const n = m.width * m.height * 4;
+    const a = M._malloc(n), b = M._malloc(n), heat = M._malloc(n);
+    try {
+      M.HEAPU8.set(m.a, a);
+      M.HEAPU8.set(m.b, b);
+      const figures = JSON.parse(M.UTF8ToString(M._rtw_compare(a, b, m.width, m.height, m.tolerance, heat)));
+      return { figures, heat: M.HEAPU8.slice(heat, heat + n) };
+    } finally {
+      [a, b, heat].forEach((p) => M._free(p));
+    }
+  },
+};
+
+self.onmessage = async (e) => {
+  const m = e.data;
+  const post = (reply) => self.postMessage({ id: m.id, ...reply });
+  try {
+    const M = await ready;
+    const result = handlers[m.type](M, m, post);
+    const transfer = [result.rgba, result.heat].filter((x) => x).map((x) => x.buffer);
+    self.postMessage({ id: m.id, type: "done", ...result }, transfer);
+  } catch (err) {
+    self.postMessage({ id: m.id, type: "done", error: "internal error: " + (err && err.message ? err.message : err) });
+  }
+};

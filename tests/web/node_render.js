@@ -1,0 +1,99 @@
+// Renders scene files with the WebAssembly module alone (build/web/rt.js) under Node, one
+// thread, as the page's workers do: node node_render.js OUT_DIR [--precision float]
+// SCENE.json... writes OUT_DIR/<ImageName without extension>.ppm for every camera and
+// prints one line per image: "<ppm path>\t<render seconds>". Errors: one line, exit 1.
+// Run with --no-experimental-fetch under Node 18 and later (docs/web.md).
+"use strict";
+const fs = require("fs");
+const path = require("path");
+const createRaytracerModule = require(path.join(__dirname, "..", "..", "build", "web", "rt.js"));
+
+function plyPaths(tree, out = []) {
+  if (Array.isArray(tree)) tree.forEach((v) => plyPaths(v, out));
+  else if (tree && typeof tree === "object")
+    for (const [k, v] of Object.entries(tree)) {
+      if (k === "_plyFile" && typeof v === "string") out.push(v);
+      else plyPaths(v, out);
+    }
+  return out;
+}
+
+function cString(M, s) {
+  const n = M.lengthBytesUTF8(s) + 1;
+  const p = M._malloc(n);
+  M.stringToUTF8(s, p, n);
+  return p;
+}
+
+async function main() {
+  const args = process.argv.slice(2);
+  let precision = "double";
+  const i = args.indexOf("--precision");
+  if (i >= 0) {
+    precision = args[i + 1];
+    args.splice(i, 2);
+  }
+  const [out, ...scenes] = args;
+  fs.mkdirSync(out, { recursive: true });
+  const M = await createRaytracerModule();
+  let n = 0;
+  for (const scene of scenes) {
+    // The scene and its PLY files, under a folder of their own, as the page writes them.
+    const root = "/s" + ++n;
+    const put = (rel, from) => {
+      const parts = rel.split("/").filter((p) => p && p !== ".");
+      let dir = root;
+      for (const p of parts.slice(0, -1)) {
+        dir += "/" + p;
+        if (!M.FS.analyzePath(dir).exists) M.FS.mkdir(dir);
+      }
+      M.FS.writeFile(root + "/" + parts.join("/"), fs.readFileSync(from));
+    };
+    M.FS.mkdir(root);
+    const name = path.basename(scene);
+    put(name, scene);
+    let tree = null;
+    try {
+      tree = JSON.parse(fs.readFileSync(scene, "utf8"));
+    } catch (e) {
+      // not JSON: the module says where
+    }
+    for (const p of plyPaths(tree)) if (fs.existsSync(path.join(path.dirname(scene), p))) put(p, path.join(path.dirname(scene), p));
+    M.FS.chdir(root);
+    const ptrs = [name, "", precision].map((s) => cString(M, s));
+    const error = M.UTF8ToString(M._rtw_load(...ptrs));
+    ptrs.forEach((p) => M._free(p));
+    if (error) {
+      process.stderr.write("error: " + error + "\n");
+      process.exit(1);
+    }
+    const info = JSON.parse(M.UTF8ToString(M._rtw_scene()));
+    info.cameras.forEach((cam, c) => {
+      const bytes = cam.width * cam.height * 4;
+      const buf = M._malloc(bytes);
+      const t0 = process.hrtime.bigint();
+      const e = M.UTF8ToString(M._rtw_render_part(c, 0, 1, buf));
+      const seconds = Number(process.hrtime.bigint() - t0) / 1e9;
+      if (e) {
+        process.stderr.write("error: " + e + "\n");
+        process.exit(1);
+      }
+      const rgb = Buffer.alloc(cam.width * cam.height * 3);
+      for (let k = 0; k < cam.width * cam.height; ++k) {
+        rgb[3 * k] = M.HEAPU8[buf + 4 * k];
+        rgb[3 * k + 1] = M.HEAPU8[buf + 4 * k + 1];
+        rgb[3 * k + 2] = M.HEAPU8[buf + 4 * k + 2];
+      }
+      M._free(buf);
+      const file = path.join(out, cam.name.replace(/\.[^.]*$/, "") + ".ppm");
+      fs.writeFileSync(file, Buffer.concat([Buffer.from(`P6\n${cam.width} ${cam.height}\n255\n`), rgb]));
+      process.stdout.write(file + "\t" + seconds.toFixed(4) + "\n");
+    });
+    M.FS.chdir("/");
+  }
+}
+
+main().catch((e) => {
+  process.stderr.write("error: " + (e && e.message ? e.message : e) + "\n");
+  process.exit(1);
+});
