@@ -60,3 +60,9 @@ $(WEB)/scenes/index.json: $(wildcard scenes/*.json) $(shell find scenes -name '*
 	python3 src/web/bundle_scenes.py scenes $(@D)
 
 -include $(shell find $(WEB_OBJ) -name '*.d' 2>/dev/null)
+
+# The module under Node and the page in headless Chromium against the native build
+# (tests/web/check_web.py; needs chromium, chromium-driver, python3-selenium, ../shared).
+.PHONY: check-web
+check-web: web raytracer rtdiff
+	/usr/bin/python3 tests/web/check_web.py

@@ -213,7 +213,8 @@ function entry(dl, key, value) {
   const dt = document.createElement("dt");
   dt.textContent = key;
   const dd = document.createElement("dd");
-  if (typeof value === "object" && !Array.isArray(value)) dd.textContent = JSON.stringify(value);
+  if (typeof value === "object" && !Array.isArray(value))
+    dd.textContent = Object.entries(value).filter(([, v]) => v !== null).map(([k, v]) => k + " " + fmt(v)).join(", ");
   else dd.textContent = fmt(value);
   dl.append(dt, dd);
 }

@@ -1,0 +1,297 @@
+#!/usr/bin/python3
+"""make check-web (docs/web.md): the WebAssembly module under Node and the page in headless
+Chromium (Debian's chromium, chromium-driver and python3-selenium), against the native
+double build:
+  1. Node: every complete scene of ../shared (hw1, hw2) rendered by the module alone,
+     pixel-identical to ./raytracer's images.
+  2. The page from a local server: it loads; the same scenes through raytracer.render(),
+     pixel-identical; a scene given through the file input renders; a trace equals
+     ./raytracer --trace-json's; a bad scene shows the command line's one-line error and the
+     page keeps working; a screenshot with an image, a ray tree and a heatmap is written to
+     build/web/screenshot.png.
+Exit status 0 when every check passed, 1 otherwise; without ../shared (RT_SHARED_DIR) or
+the browser it fails loudly, never skips."""
+import base64
+import functools
+import http.server
+import json
+import os
+import shutil
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+
+REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+WEB = os.path.join(REPO, "build", "web")
+RAYTRACER = os.path.join(REPO, "raytracer")
+RTDIFF = os.path.join(REPO, "rtdiff")
+failures = []
+
+
+def check(ok, what):
+    print(("ok    " if ok else "FAIL  ") + what, flush=True)
+    if not ok:
+        failures.append(what)
+    return ok
+
+
+def shared_dir():
+    d = os.environ.get("RT_SHARED_DIR") or os.path.join(os.path.dirname(REPO), "shared")
+    return d if os.path.isdir(os.path.join(d, "scenes")) else ""
+
+
+def complete_scenes(shared):
+    """(assignment, path relative to its scene folder) of every complete scene."""
+    out = []
+    for hw in ("hw1", "hw2"):
+        with open(os.path.join(shared, "scenes", hw, "MANIFEST.tsv"), encoding="utf-8") as f:
+            for line in f:
+                cols = line.rstrip("\n").split("\t")
+                # A scene of several cameras has a line per image: rendered once.
+                if not line.startswith("#") and len(cols) >= 4 and cols[3].startswith("complete") and \
+                        (hw, cols[0]) not in out:
+                    out.append((hw, cols[0]))
+    return out
+
+
+def write_ppm(path, width, height, rgba):
+    rgb = bytearray(width * height * 3)
+    rgb[0::3], rgb[1::3], rgb[2::3] = rgba[0::4], rgba[1::4], rgba[2::4]
+    with open(path, "wb") as f:
+        f.write(b"P6\n%d %d\n255\n" % (width, height) + bytes(rgb))
+
+
+def identical(a, b):
+    """rtdiff at tolerance 0: no channel of any pixel differs."""
+    r = subprocess.run([RTDIFF, "--tolerance", "0", "--fail-above", "0", a, b], capture_output=True, text=True)
+    return r.returncode == 0, (r.stdout + r.stderr).strip().splitlines()[-1:] or [""]
+
+
+def native_images(scene, out):
+    """./raytracer's images of `scene` into `out`: {image name: path}."""
+    os.makedirs(out, exist_ok=True)
+    before = set(os.listdir(out))
+    subprocess.run([RAYTRACER, "-q", "-o", out, scene], check=True)
+    return {os.path.splitext(n)[0]: os.path.join(out, n) for n in set(os.listdir(out)) - before}
+
+
+def node_checks(shared, scenes, tmp):
+    print("== the module under Node", flush=True)
+    for hw, rel in scenes:
+        scene = os.path.join(shared, "scenes", hw, rel)
+        native = native_images(scene, os.path.join(tmp, "native", hw, os.path.dirname(rel)))
+        out = os.path.join(tmp, "node", hw, os.path.dirname(rel))
+        r = subprocess.run(["node", "--no-experimental-fetch", os.path.join(REPO, "tests", "web", "node_render.js"),
+                            out, scene], capture_output=True, text=True)
+        if not check(r.returncode == 0, f"node renders {hw}/{rel}" + (": " + r.stderr.strip() if r.returncode else "")):
+            continue
+        for line in r.stdout.splitlines():
+            ppm, seconds = line.split("\t")
+            name = os.path.splitext(os.path.basename(ppm))[0]
+            same, text = identical(ppm, native.get(name, "missing"))
+            check(same, f"node {hw}/{rel} {name}: equal to native ({seconds} s; {text[0]})")
+
+
+class Handler(http.server.SimpleHTTPRequestHandler):
+    """build/web at /, ../shared at /shared/, the test's own files at /fixtures/."""
+    roots = {}
+
+    def translate_path(self, path):
+        path = path.split("?", 1)[0]
+        for prefix, root in self.roots.items():
+            if path.startswith(prefix):
+                return os.path.join(root, path[len(prefix):].lstrip("/"))
+        return super().translate_path(path)
+
+    def log_message(self, *args):
+        pass
+
+
+def start_server(shared, fixtures):
+    Handler.roots = {"/shared/": shared, "/fixtures/": fixtures}
+    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), functools.partial(Handler, directory=WEB))
+    threading.Thread(target=server.serve_forever, daemon=True).start()
+    return server
+
+
+def browser():
+    from selenium import webdriver
+    from selenium.webdriver.chrome.service import Service
+    o = webdriver.ChromeOptions()
+    o.binary_location = shutil.which("chromium") or "/usr/bin/chromium"
+    for a in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage", "--window-size=1400,1800"):
+        o.add_argument(a)
+    d = webdriver.Chrome(service=Service(shutil.which("chromedriver") or "/usr/bin/chromedriver"), options=o)
+    d.set_script_timeout(600)
+    return d
+
+
+# Renders a scene of ../shared through the API: fetches it and its PLY files, returns
+# {images: [{name, width, height, rgba (base64)}], seconds} or {error}.
+RENDER_JS = """
+const [url, options, done] = arguments;
+(async () => {
+  const dir = url.slice(0, url.lastIndexOf('/') + 1), name = url.slice(url.lastIndexOf('/') + 1);
+  const text = new Uint8Array(await (await fetch(url)).arrayBuffer());
+  const files = {[name]: text};
+  const plys = [];
+  (function walk(t) {
+    if (Array.isArray(t)) t.forEach(walk);
+    else if (t && typeof t === 'object') for (const [k, v] of Object.entries(t)) k === '_plyFile' ? plys.push(v) : walk(v);
+  })(JSON.parse(new TextDecoder().decode(text)));
+  for (const p of plys) files[p] = new Uint8Array(await (await fetch(dir + p)).arrayBuffer());
+  const r = await raytracer.render({files, scene: name, options});
+  const b64 = (u8) => { let s = ''; for (let i = 0; i < u8.length; i += 0x8000) s += String.fromCharCode.apply(null, u8.subarray(i, i + 0x8000)); return btoa(s); };
+  return {seconds: r.seconds, workers: r.workers, images: r.images.map(i => ({name: i.name, width: i.width, height: i.height, seconds: i.seconds, rgba: b64(i.rgba)}))};
+})().then(done, e => done({error: String(e && e.message || e)}));
+"""
+
+
+def render_in_page(d, url, options):
+    return d.execute_async_script(RENDER_JS, url, options)
+
+
+def wait_for(d, js, timeout=120):
+    t0 = time.time()
+    while time.time() - t0 < timeout:
+        v = d.execute_script(js)
+        if v:
+            return v
+        time.sleep(0.1)
+    return None
+
+
+def page_checks(shared, scenes, tmp):
+    print("== the page in headless Chromium", flush=True)
+    fixtures = os.path.join(tmp, "fixtures")
+    os.makedirs(fixtures)
+    server = start_server(shared, fixtures)
+    base = f"http://127.0.0.1:{server.server_address[1]}/"
+    d = browser()
+    try:
+        d.get(base + "index.html")
+        check(wait_for(d, "return window.raytracer && document.querySelectorAll('#bundled option').length > 1") is not None,
+              "the page loads, with its bundled scenes listed")
+
+        for hw, rel in scenes:
+            r = render_in_page(d, base + f"shared/scenes/{hw}/{rel}", {"workers": 2})
+            if not check("error" not in r, f"page renders {hw}/{rel}" + (": " + r.get("error", "") if "error" in r else "")):
+                continue
+            native = native_images(os.path.join(shared, "scenes", hw, rel),
+                                   os.path.join(tmp, "native-page", hw, os.path.dirname(rel)))
+            for im in r["images"]:
+                name = os.path.splitext(im["name"])[0]
+                ppm = os.path.join(tmp, f"page-{hw}-{name}.ppm")
+                write_ppm(ppm, im["width"], im["height"], base64.b64decode(im["rgba"]))
+                same, text = identical(ppm, native.get(name, "missing"))
+                check(same, f"page {hw}/{rel} {name}: equal to native ({im['seconds']:.3f} s, {r['workers']} workers; {text[0]})")
+
+        # A trace through the API equals the command line's --trace-json.
+        scene = os.path.join(shared, "scenes", "hw1", "spheres_mirror.json")
+        native_json = os.path.join(tmp, "trace.json")
+        subprocess.run([RAYTRACER, "--trace", "400,300", "--trace-json", native_json, scene], check=True,
+                       capture_output=True)
+        got = d.execute_async_script("""
+            const [url, done] = arguments;
+            (async () => {
+              const files = {'spheres_mirror.json': new Uint8Array(await (await fetch(url)).arrayBuffer())};
+              return await raytracer.trace({files, scene: 'spheres_mirror.json', camera: 0, x: 400, y: 300});
+            })().then(done, e => done({error: String(e.message || e)}));""", base + "shared/scenes/hw1/spheres_mirror.json")
+        with open(native_json, encoding="utf-8") as f:
+            want = json.load(f)
+        for t in (got, want):
+            t.pop("scene", None)
+        check(got == want, "a trace through the API equals ./raytracer --trace-json (spheres_mirror 400,300)")
+
+        # A scene given through the file input, rendered by the page's button.
+        knot = os.path.join(REPO, "scenes", "knot")
+        inputs = [os.path.join(knot, n) for n in sorted(os.listdir(knot))]
+        d.get(base + "index.html")
+        wait_for(d, "return window.raytracer")
+        d.find_element("id", "files").send_keys("\n".join(inputs))
+        wait_for(d, "return window.app.scene === 'knot.json' && !document.getElementById('render').disabled")
+        d.find_element("id", "render").click()
+        ok = wait_for(d, "return document.querySelectorAll('#images canvas.render').length > 0 || "
+                         "document.getElementById('error').textContent", 300)
+        rgba = d.execute_script("""
+            const c = document.querySelector('#images canvas.render');
+            if (!c) return null;
+            const u8 = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+            let s = ''; for (let i = 0; i < u8.length; i += 0x8000) s += String.fromCharCode.apply(null, u8.subarray(i, i + 0x8000));
+            return [c.width, c.height, btoa(s)];""")
+        if check(ok and rgba is not None, "a scene given through the file input renders (scenes/knot: "
+                 + d.find_element("id", "error").text + ")"):
+            native = native_images(os.path.join(knot, "knot.json"), os.path.join(tmp, "native-knot"))
+            ppm = os.path.join(tmp, "page-knot.ppm")
+            write_ppm(ppm, rgba[0], rgba[1], base64.b64decode(rgba[2]))
+            same, text = identical(ppm, list(native.values())[0])
+            check(same, f"  and its canvas equals native ({text[0]})")
+
+        # A bad scene: the command line's line, next to the file's name; the page keeps working.
+        bad = json.load(open(os.path.join(shared, "scenes", "hw1", "simple.json"), encoding="utf-8"))
+        spheres = bad["Scene"]["Objects"]["Sphere"]
+        (spheres[0] if isinstance(spheres, list) else spheres)["Radius"] = "-1"
+        bad_path = os.path.join(fixtures, "bad.json")
+        with open(bad_path, "w", encoding="utf-8") as f:
+            json.dump(bad, f)
+        line = subprocess.run([RAYTRACER, "-q", "-o", tmp, "bad.json"], cwd=fixtures, capture_output=True,
+                              text=True).stderr.strip()
+        d.execute_script("document.getElementById('files').value = ''")  # send_keys adds to a selection
+        d.find_element("id", "files").send_keys(bad_path)
+        wait_for(d, "return window.app.scene === 'bad.json' && !document.getElementById('render').disabled")
+        d.find_element("id", "render").click()
+        shown = wait_for(d, "return document.getElementById('error').textContent", 60) or ""
+        check(line.startswith("error: bad.json: ") and shown.startswith(line) and "bad.json" in shown[len(line):],
+              f"a bad scene shows the command line's line and the file's name ({shown!r})")
+
+        # The page keeps working: a bundled scene, a clicked pixel's tree, a comparison.
+        d.execute_script("""const s = document.getElementById('bundled'); s.value = 'showcase';
+                            s.dispatchEvent(new Event('change'));""")
+        wait_for(d, "return window.app.scene === 'showcase.json' && !document.getElementById('render').disabled")
+        d.find_element("id", "render").click()
+        check(wait_for(d, "return document.querySelectorAll('#images canvas.render').length > 0 && "
+                          "!document.getElementById('error').textContent", 120) is not None,
+              "after the error, a bundled scene renders")
+        canvas = d.find_element("css selector", "#images canvas.render")
+        d.execute_script("""const c = arguments[0], r = c.getBoundingClientRect();
+            c.dispatchEvent(new MouseEvent('click', {clientX: r.left + r.width * 0.5, clientY: r.top + r.height * 0.62, bubbles: true}));""",
+                         canvas)
+        check(wait_for(d, "return !document.getElementById('trace').hidden && "
+                          "document.querySelectorAll('#trace-tree details').length > 0", 60) is not None,
+              "clicking a pixel shows its ray tree")
+        theirs_dir = os.path.join(tmp, "theirs")
+        subprocess.run([RAYTRACER, "-q", "--max-depth", "1", "-o", theirs_dir,
+                        os.path.join(REPO, "scenes", "showcase.json")], check=True)
+        d.find_element("css selector", "#images input[type=file]").send_keys(os.path.join(theirs_dir, "showcase.png"))
+        figures = wait_for(d, "return document.querySelector('#images canvas.heat') && "
+                              "document.querySelector('.figures').textContent", 60) or ""
+        check("off by more than 1" in figures and "PSNR" in figures,
+              f"a dropped PNG gives rtdiff's figures and a heatmap ({figures[:90]}...)")
+        d.save_screenshot(os.path.join(WEB, "screenshot.png"))
+        print(f"      screenshot: {os.path.relpath(os.path.join(WEB, 'screenshot.png'), REPO)}")
+    finally:
+        d.quit()
+        server.shutdown()
+
+
+def main():
+    shared = shared_dir()
+    if not shared:
+        print("FAIL  check-web: no ../shared (set RT_SHARED_DIR): nothing to compare", file=sys.stderr)
+        return 1
+    for f in (os.path.join(WEB, "rt.js"), RAYTRACER, RTDIFF):
+        if not os.path.exists(f):
+            print(f"FAIL  check-web: {f} is missing (make web raytracer rtdiff)", file=sys.stderr)
+            return 1
+    scenes = complete_scenes(shared)
+    with tempfile.TemporaryDirectory() as tmp:
+        node_checks(shared, scenes, tmp)
+        page_checks(shared, scenes, tmp)
+    print(f"check-web: {len(failures)} failure(s)" if failures else "check-web: every check passed")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
