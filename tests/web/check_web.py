@@ -24,7 +24,7 @@ import threading
 import time
 
 REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-WEB = os.path.join(REPO, "build", "web")
+WEB = os.environ.get("RT_WEB_DIR") or os.path.join(REPO, "build", "web")  # another build: RT_WEB_DIR
 RAYTRACER = os.path.join(REPO, "raytracer")
 RTDIFF = os.path.join(REPO, "rtdiff")
 failures = []

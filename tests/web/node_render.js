@@ -6,7 +6,8 @@
 "use strict";
 const fs = require("fs");
 const path = require("path");
-const createRaytracerModule = require(path.join(__dirname, "..", "..", "build", "web", "rt.js"));
+// Another build's module: RT_WEB_DIR (as check_web.py).
+const createRaytracerModule = require(path.join(process.env.RT_WEB_DIR || path.join(__dirname, "..", "..", "build", "web"), "rt.js"));
 
 function plyPaths(tree, out = []) {
   if (Array.isArray(tree)) tree.forEach((v) => plyPaths(v, out));
