@@ -103,7 +103,8 @@ TEST(WebSession, ErrorsAreTheCommandLinesLines) {
     EXPECT_EQ(nlohmann::json::parse(rt::web::scene_json())["cameras"].size(), 0u);
     write_text(tmp / "s.json", kScene);
     EXPECT_EQ(rt::web::load(tmp / "s.json", R"({"cull": 1})"), "options: cull: unknown option or bad value 1");
-    EXPECT_EQ(rt::web::load(tmp / "s.json", R"({"colour": true})"), "options: colour: unknown option or bad value true");
+    EXPECT_EQ(rt::web::load(tmp / "s.json", R"({"colour": true})"),
+              "options: colour: unknown option or bad value true");
     EXPECT_EQ(rt::web::load(tmp / "s.json", R"({"rounding": "nearest", "min_weight": 0})"), "");
     EXPECT_EQ(rt::web::render_part(0, 3, 3, px.data()), "render: part outside 0..parts-1");
 }

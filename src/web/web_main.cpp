@@ -34,8 +34,7 @@ rt::Image rgb_of(const uint8_t* rgba, int width, int height) {
     img.width = width;
     img.height = height;
     img.rgb.resize(static_cast<size_t>(width) * height * 3);
-    for (size_t i = 0; i < static_cast<size_t>(width) * height; ++i)
-        std::memcpy(&img.rgb[3 * i], &rgba[4 * i], 3);
+    for (size_t i = 0; i < static_cast<size_t>(width) * height; ++i) std::memcpy(&img.rgb[3 * i], &rgba[4 * i], 3);
     return img;
 }
 
@@ -56,7 +55,9 @@ EMSCRIPTEN_KEEPALIVE const char* rtw_load(const char* scene_path, const char* op
     return out(g_float ? rt_float::web::load(scene_path, options_json) : rt::web::load(scene_path, options_json));
 }
 
-EMSCRIPTEN_KEEPALIVE const char* rtw_scene() { return out(g_float ? rt_float::web::scene_json() : rt::web::scene_json()); }
+EMSCRIPTEN_KEEPALIVE const char* rtw_scene() {
+    return out(g_float ? rt_float::web::scene_json() : rt::web::scene_json());
+}
 
 EMSCRIPTEN_KEEPALIVE const char* rtw_render_part(int camera, int part, int parts, uint8_t* rgba) {
     return out(g_float ? rt_float::web::render_part(camera, part, parts, rgba)

@@ -29,7 +29,8 @@ std::from_chars_result parse_number(const char* first, const char* last, T& valu
         const bool spelled_inf = p < r.ptr && (*p == 'i' || *p == 'I');
         bool nonzero_digit = false;
         for (const char* q = p; q < r.ptr && *q != 'e' && *q != 'E'; ++q) nonzero_digit |= *q >= '1' && *q <= '9';
-        if ((std::isinf(value) && !spelled_inf) || (value == 0 && nonzero_digit)) out.ec = std::errc::result_out_of_range;
+        if ((std::isinf(value) && !spelled_inf) || (value == 0 && nonzero_digit))
+            out.ec = std::errc::result_out_of_range;
         return out;
     } else {
         return std::from_chars(first, last, value);
