@@ -1,6 +1,6 @@
 # make web: the renderer in a browser page (docs/web.md), built with Debian's Emscripten
 # (apt-get install emscripten node-acorn libfast-float-dev) into build/web/:
-#   index.html, app.js, raytracer.js (the JavaScript API), worker.js, style.css,
+#   index.html, app.js, raytracer.js (the JavaScript API), worker.js, scene_files.js, style.css,
 #   rt.js + rt.wasm (the library in both precisions, src/web/web_main.cpp's exports),
 #   scenes/ (the bundled scenes of scenes/, with scenes/index.json).
 # `python3 -m http.server -d build/web` serves it. The WebAssembly build has no pugixml
@@ -27,7 +27,7 @@ WEB_EXPORTS := _rtw_load,_rtw_scene,_rtw_render_part,_rtw_trace,_rtw_compare,_ma
 WEB_LDFLAGS := $(WEB_ARCH) -O3 -fexceptions -sMODULARIZE=1 -sEXPORT_NAME=createRaytracerModule -sALLOW_MEMORY_GROWTH=1 \
                -sMAXIMUM_MEMORY=4GB -sENVIRONMENT=web,worker,node -sEXPORTED_FUNCTIONS=$(WEB_EXPORTS) \
                -sEXPORTED_RUNTIME_METHODS=FS,UTF8ToString,stringToUTF8,lengthBytesUTF8
-WEB_ASSETS := index.html app.js raytracer.js worker.js style.css
+WEB_ASSETS := index.html app.js raytracer.js worker.js scene_files.js style.css
 
 .PHONY: web
 web: $(WEB)/rt.js $(addprefix $(WEB)/,$(WEB_ASSETS)) $(WEB)/scenes/index.json

@@ -1,6 +1,6 @@
 // The page (index.html): picks the scene files, renders them with raytracer.js, shows the
 // images, the ray tree of a clicked pixel, and a comparison with the user's own PNG.
-/* global raytracer */
+/* global raytracer, sceneFiles */
 "use strict";
 
 const $ = (id) => document.getElementById(id);
@@ -12,17 +12,6 @@ function setError(message) {
 }
 function setStatus(text) {
   $("status").textContent = text;
-}
-
-// The _plyFile paths a scene names.
-function plyPaths(tree, out = []) {
-  if (Array.isArray(tree)) tree.forEach((v) => plyPaths(v, out));
-  else if (tree && typeof tree === "object")
-    for (const [k, v] of Object.entries(tree)) {
-      if (k === "_plyFile" && typeof v === "string") out.push(v);
-      else plyPaths(v, out);
-    }
-  return out;
 }
 
 const baseName = (p) => p.slice(p.lastIndexOf("/") + 1);
@@ -46,7 +35,7 @@ function useFiles(given) {
   }
   const files = { ...given };
   if (tree)
-    for (const p of plyPaths(tree)) {
+    for (const p of sceneFiles.plyPaths(tree)) {
       const match = Object.keys(given).find((n) => baseName(n) === baseName(p));
       if (match && !(p in files)) files[p] = given[match];
     }

@@ -7,9 +7,9 @@
 //       {rgba}: the image with the parts' tiles rendered (alpha 255), the rest zero
 //   {type: "trace", camera, x, y} -> {trace}: the --trace-json object
 //   {type: "compare", a, b, width, height, tolerance} -> {figures, heat}
-/* global createRaytracerModule, importScripts */
+/* global createRaytracerModule, importScripts, sceneFiles */
 "use strict";
-importScripts("rt.js");
+importScripts("rt.js", "scene_files.js");
 
 const ready = createRaytracerModule();
 let loads = 0;
@@ -35,16 +35,7 @@ function callText(M, name, strings, numbers = []) {
 // name them as the command line run in the scene's folder would.
 function writeFiles(M, files) {
   const root = "/scene" + ++loads;
-  M.FS.mkdir(root);
-  for (const [path, bytes] of Object.entries(files)) {
-    const parts = path.split("/").filter((p) => p && p !== ".");
-    let dir = root;
-    for (const p of parts.slice(0, -1)) {
-      dir += "/" + p;
-      if (!M.FS.analyzePath(dir).exists) M.FS.mkdir(dir);
-    }
-    M.FS.writeFile(root + "/" + parts.join("/"), bytes);
-  }
+  sceneFiles.writeFiles(M.FS, root, files);
   M.FS.chdir(root);
   return root;
 }

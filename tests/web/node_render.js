@@ -7,17 +7,8 @@
 const fs = require("fs");
 const path = require("path");
 // Another build's module: RT_WEB_DIR (as check_web.py).
+const { plyPaths, writeFiles } = require(path.join(__dirname, "..", "..", "src", "web", "scene_files.js"));
 const createRaytracerModule = require(path.join(process.env.RT_WEB_DIR || path.join(__dirname, "..", "..", "build", "web"), "rt.js"));
-
-function plyPaths(tree, out = []) {
-  if (Array.isArray(tree)) tree.forEach((v) => plyPaths(v, out));
-  else if (tree && typeof tree === "object")
-    for (const [k, v] of Object.entries(tree)) {
-      if (k === "_plyFile" && typeof v === "string") out.push(v);
-      else plyPaths(v, out);
-    }
-  return out;
-}
 
 function cString(M, s) {
   const n = M.lengthBytesUTF8(s) + 1;
@@ -41,25 +32,19 @@ async function main() {
   for (const scene of scenes) {
     // The scene and its PLY files, under a folder of their own, as the page writes them.
     const root = "/s" + ++n;
-    const put = (rel, from) => {
-      const parts = rel.split("/").filter((p) => p && p !== ".");
-      let dir = root;
-      for (const p of parts.slice(0, -1)) {
-        dir += "/" + p;
-        if (!M.FS.analyzePath(dir).exists) M.FS.mkdir(dir);
-      }
-      M.FS.writeFile(root + "/" + parts.join("/"), fs.readFileSync(from));
-    };
-    M.FS.mkdir(root);
     const name = path.basename(scene);
-    put(name, scene);
+    const files = { [name]: fs.readFileSync(scene) };
     let tree = null;
     try {
-      tree = JSON.parse(fs.readFileSync(scene, "utf8"));
+      tree = JSON.parse(files[name].toString("utf8"));
     } catch (e) {
       // not JSON: the module says where
     }
-    for (const p of plyPaths(tree)) if (fs.existsSync(path.join(path.dirname(scene), p))) put(p, path.join(path.dirname(scene), p));
+    for (const p of plyPaths(tree)) {
+      const from = path.join(path.dirname(scene), p);
+      if (fs.existsSync(from)) files[p] = fs.readFileSync(from);
+    }
+    writeFiles(M.FS, root, files);
     M.FS.chdir(root);
     const ptrs = [name, "", precision].map((s) => cString(M, s));
     const error = M.UTF8ToString(M._rtw_load(...ptrs));
