@@ -188,6 +188,20 @@ def page_checks(shared, scenes, tmp):
                 same, text = identical(ppm, native.get(name, "missing"))
                 check(same, f"page {hw}/{rel} {name}: equal to native ({im['seconds']:.3f} s, {r['workers']} workers; {text[0]})")
 
+        # The float copy too, on two scenes: the same bytes as ./raytracer --precision float.
+        for hw, rel in (("hw1", "scienceTree_glass.json"), ("hw2", "ellipsoids.json")):
+            r = render_in_page(d, base + f"shared/scenes/{hw}/{rel}", {"workers": 2, "precision": "float"})
+            out = os.path.join(tmp, "native-float", hw)
+            os.makedirs(out, exist_ok=True)
+            subprocess.run([RAYTRACER, "-q", "--precision", "float", "-o", out, os.path.join(shared, "scenes", hw, rel)],
+                           check=True)
+            for im in r.get("images", []):
+                ppm = os.path.join(tmp, f"page-float-{im['name']}.ppm")
+                write_ppm(ppm, im["width"], im["height"], base64.b64decode(im["rgba"]))
+                same, text = identical(ppm, os.path.join(out, im["name"]))
+                check(same, f"page {hw}/{rel} in float: equal to native float ({text[0]})")
+            check("images" in r, f"page renders {hw}/{rel} in float {r.get('error', '')}")
+
         # A trace through the API equals the command line's --trace-json.
         scene = os.path.join(shared, "scenes", "hw1", "spheres_mirror.json")
         native_json = os.path.join(tmp, "trace.json")
