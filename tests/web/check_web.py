@@ -243,6 +243,31 @@ def page_checks(shared, scenes, tmp):
             same, text = identical(ppm, list(native.values())[0])
             check(same, f"  and its canvas equals native ({text[0]})")
 
+        # The same scene dropped onto the page (a drop event carrying the files).
+        d.get(base + "index.html")
+        wait_for(d, "return window.raytracer")
+        d.execute_async_script("""
+            const done = arguments[0];
+            (async () => {
+              const dt = new DataTransfer();
+              for (const n of ['knot.json', 'knot_1.ply', 'knot_2.ply', 'knot_3.ply'])
+                dt.items.add(new File([await (await fetch('scenes/knot/' + n)).arrayBuffer()], n));
+              document.getElementById('drop').dispatchEvent(new DragEvent('drop', {dataTransfer: dt, bubbles: true}));
+            })().then(done, done);""")
+        wait_for(d, "return window.app.scene === 'knot.json' && !document.getElementById('render').disabled")
+        d.find_element("id", "render").click()
+        dropped = wait_for(d, """const c = document.querySelector('#images canvas.render');
+            if (!c) return null;
+            const u8 = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+            let s = ''; for (let i = 0; i < u8.length; i += 0x8000) s += String.fromCharCode.apply(null, u8.subarray(i, i + 0x8000));
+            return [c.width, c.height, btoa(s)];""", 300)
+        if check(dropped is not None, "a scene dropped onto the page renders (scenes/knot)"):
+            ppm = os.path.join(tmp, "page-knot-dropped.ppm")
+            write_ppm(ppm, dropped[0], dropped[1], base64.b64decode(dropped[2]))
+            same, text = identical(ppm, list(native_images(os.path.join(knot, "knot.json"),
+                                                           os.path.join(tmp, "native-knot-2")).values())[0])
+            check(same, f"  and its canvas equals native ({text[0]})")
+
         # A bad scene: the command line's line, next to the file's name; the page keeps working.
         bad = json.load(open(os.path.join(shared, "scenes", "hw1", "simple.json"), encoding="utf-8"))
         spheres = bad["Scene"]["Objects"]["Sphere"]
