@@ -5,7 +5,7 @@
 #   scenes/ (the bundled scenes of scenes/, with scenes/index.json).
 # `python3 -m http.server -d build/web` serves it. The WebAssembly build has no pugixml
 # and no libdeflate (RT_NO_XML: XML scenes are refused; the page encodes PNGs itself),
-# and no x86 SIMD: the scalar kernels, which give the same bytes (docs/exactness.md).
+# and no x86 SIMD: WebAssembly SIMD box lanes and scalar triangle tests, the same bytes (docs/exactness.md).
 EMCXX       ?= em++
 WEB         := build/web
 WEB_OBJ     := build/web-obj

@@ -196,21 +196,25 @@ inline int test_lanes(const BvhNode& n, const BoxRayOf<float>& r, float tmin, fl
 #if !defined(RT_REAL_FLOAT)
 // Double rays test boxes in double: the float bounds convert exactly.
 using BoxReal = double;
-// Eight lanes in one AVX-512 register, else two AVX halves.
+// Eight lanes in one AVX-512 register, else two AVX halves (four WebAssembly quarters).
 #if defined(__AVX512F__)
 using BoxLanes = F64x8;
 #elif defined(__AVX__)
 using BoxLanes = F64x4;
+#elif defined(__wasm_simd128__)
+using BoxLanes = W64x2;
 #else
 using BoxLanes = OneLane<double>;
 #endif
 #else
 using BoxReal = float;
-// Eight lanes in one AVX register, else two SSE halves.
+// Eight lanes in one AVX register, else two SSE (or WebAssembly) halves.
 #if defined(__AVX__)
 using BoxLanes = F32x8;
 #elif defined(__SSE2__)
 using BoxLanes = F32x4;
+#elif defined(__wasm_simd128__)
+using BoxLanes = W32x4;
 #else
 using BoxLanes = OneLane<float>;
 #endif

@@ -19,6 +19,9 @@
 #include <immintrin.h>
 #pragma GCC diagnostic pop
 #endif
+#if defined(__wasm_simd128__)
+#include <wasm_simd128.h>
+#endif
 
 namespace rt::traversal {
 
@@ -127,6 +130,43 @@ struct F64x8 {
         const V z = _mm512_setzero_pd();
         return _mm512_cmp_pd_mask(a, z, kCmp) | _mm512_cmp_pd_mask(b, z, kCmp) | _mm512_cmp_pd_mask(c, z, kCmp);
     }
+};
+#endif
+
+#if defined(__wasm_simd128__)
+// WebAssembly SIMD (the browser build, docs/web.md). pmax and pmin with their operands
+// swapped are x86's max and min: pmax(b, a) = b < a ? a : b, the second operand on NaN.
+// tests/test_lanes.cpp runs natively only; make check-web checks these through the images.
+struct W64x2 {
+    using V = v128_t;
+    using Mask = v128_t;
+    static constexpr int kLanes = 2;
+    static V set1(double x) { return wasm_f64x2_splat(x); }
+    static V load(const float* p) { return wasm_f64x2_promote_low_f32x4(wasm_v128_load64_zero(p)); }
+    static V load(const double* p) { return wasm_v128_load(p); }
+    static void store(double* p, V x) { wasm_v128_store(p, x); }
+    static V sub(V a, V b) { return wasm_f64x2_sub(a, b); }
+    static V mul(V a, V b) { return wasm_f64x2_mul(a, b); }
+    static V max(V a, V b) { return wasm_f64x2_pmax(b, a); }
+    static V min(V a, V b) { return wasm_f64x2_pmin(b, a); }
+    static Mask le(V a, V b) { return wasm_f64x2_le(a, b); }
+    static V select(Mask m, V a, V b) { return wasm_v128_bitselect(a, b, m); }
+    static int bits(Mask m) { return wasm_i64x2_bitmask(m); }
+};
+
+struct W32x4 {
+    using V = v128_t;
+    using Mask = v128_t;
+    static constexpr int kLanes = 4;
+    static V set1(float x) { return wasm_f32x4_splat(x); }
+    static V load(const float* p) { return wasm_v128_load(p); }
+    static void store(float* p, V x) { wasm_v128_store(p, x); }
+    static V sub(V a, V b) { return wasm_f32x4_sub(a, b); }
+    static V mul(V a, V b) { return wasm_f32x4_mul(a, b); }
+    static V max(V a, V b) { return wasm_f32x4_pmax(b, a); }
+    static V min(V a, V b) { return wasm_f32x4_pmin(b, a); }
+    static Mask le(V a, V b) { return wasm_f32x4_le(a, b); }
+    static int bits(Mask m) { return wasm_i32x4_bitmask(m); }
 };
 #endif
 
