@@ -5,7 +5,8 @@
 # committed or not, minus ignored ones), plus third_party/: the headers this build uses,
 # copied now from the Debian packages (nlohmann/ from nlohmann-json3-dev, CLI/ from
 # libcli11-dev, stb/stb_image_write.h and stb/stb_image.h from libstb-dev) with their
-# copyright files.
+# copyright files. The browser page's files (src/web/, include/rt/web/, mk/web.mk) are left
+# out: the submission builds ./raytracer, and they would only lengthen its build.
 # The Makefile sees third_party/stb/stb_image_write.h and compiles with -Ithird_party
 # (src/image/stb_impl.cpp and stb_image_impl.cpp build the stb code there as everywhere);
 # libdeflate is not copied: where it is missing, mk/png.mk falls back to stb's own PNG compressor (same
@@ -24,9 +25,10 @@
 DIST_BUILD_LIMIT ?= 180
 DIST_TAR    := raytracer.tar.gz
 DIST_STAGE  := build/dist/stage
-DIST_FILES   = $(shell if git rev-parse --is-inside-work-tree >/dev/null 2>&1; then \
+DIST_FILES   = $(filter-out src/web/% include/rt/web/% mk/web.mk,$(shell \
+               if git rev-parse --is-inside-work-tree >/dev/null 2>&1; then \
                    git ls-files -co --exclude-standard -- Makefile README.md mk include src scenes | sort -u; \
-               else find Makefile README.md mk include src scenes -type f | sort; fi)
+               else find Makefile README.md mk include src scenes -type f | sort; fi))
 DIST_NLOHMANN := /usr/include/nlohmann
 DIST_STB      := /usr/include/stb
 DIST_CLI11    := /usr/include/CLI
