@@ -11,12 +11,10 @@
 namespace rt {
 
 void read_mesh_files(SceneDesc& desc, MeshCache* meshes) {
+    const JsonFields scene(desc.path);  // its errors: "<scene>: <pointer>: <what>"
     for (MeshDesc& mesh : desc.meshes) {
         if (mesh.ply_pointer.empty()) continue;
-        // "<scene>: <pointer>: <what>", as the tree's own errors (json_fields.h).
-        const auto fail = [&](const std::string& what) {
-            throw InputError(desc.path + ": " + mesh.ply_pointer + ": " + what);
-        };
+        const auto fail = [&](const std::string& what) { scene.fail(mesh.ply_pointer, what); };
         const auto t0 = std::chrono::steady_clock::now();
         PlyMesh pm;
         try {

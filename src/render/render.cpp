@@ -24,7 +24,7 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
     img.height = cam.height;
     img.rgb.assign(static_cast<size_t>(cam.width) * cam.height * 3, 0);
 
-    constexpr int kTile = 16;
+    constexpr int kTile = kRenderTile;
     constexpr int kPacketW = 4, kPacketH = 4;  // pixels of a packet (kPacketW * kPacketH <= kPacket)
     static_assert(kPacketW * kPacketH <= kPacket && kTile % kPacketW == 0 && kTile % kPacketH == 0);
     const int tiles_x = (cam.width + kTile - 1) / kTile;

@@ -96,8 +96,8 @@ std::string render_part(int camera, int part, int parts, uint8_t* rgba) {
         o.part = part;
         o.parts = parts;
         const Image img = render(*s.scene, static_cast<size_t>(camera), o);
-        // The part's tiles only (render.h: 16x16, row-major), so that parts merge.
-        constexpr int kTile = 16;
+        // The part's tiles only (rt/render/render.h), so that parts merge.
+        constexpr int kTile = kRenderTile;
         const int tiles_x = (img.width + kTile - 1) / kTile, tiles_y = (img.height + kTile - 1) / kTile;
         for (int t = part; t < tiles_x * tiles_y; t += parts) {
             const int x0 = (t % tiles_x) * kTile, y0 = (t / tiles_x) * kTile;

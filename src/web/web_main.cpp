@@ -4,10 +4,12 @@
 // next call; JavaScript copies them (UTF8ToString) at once.
 #include <emscripten/emscripten.h>
 
-#include <cmath>
+#include <nlohmann/json.hpp>
+
 #include <cstdint>
 #include <cstring>
 #include <string>
+#include <utility>
 
 #include "rt/image/image_diff.h"
 #include "rt/web/session.h"
@@ -36,13 +38,6 @@ rt::Image rgb_of(const uint8_t* rgba, int width, int height) {
     img.rgb.resize(static_cast<size_t>(width) * height * 3);
     for (size_t i = 0; i < static_cast<size_t>(width) * height; ++i) std::memcpy(&img.rgb[3 * i], &rgba[4 * i], 3);
     return img;
-}
-
-std::string number(double x) {
-    if (std::isinf(x)) return "null";  // identical images: PSNR +inf
-    char buf[32];
-    std::snprintf(buf, sizeof buf, "%.17g", x);
-    return buf;
 }
 
 }  // namespace
@@ -79,13 +74,16 @@ EMSCRIPTEN_KEEPALIVE const char* rtw_compare(const uint8_t* a_rgba, const uint8_
         std::memcpy(&heat[4 * i], &h.rgb[3 * i], 3);
         heat[4 * i + 3] = 255;
     }
-    std::string box = c.box_empty() ? "null"
-                                    : "[" + std::to_string(c.box_x0) + "," + std::to_string(c.box_y0) + "," +
-                                          std::to_string(c.box_x1) + "," + std::to_string(c.box_y1) + "]";
-    return out("{\"max_diff\":" + std::to_string(c.max_diff) + ",\"mean_diff\":" + number(c.mean_diff) +
-               ",\"pixels\":" + std::to_string(c.pixels) + ",\"pixels_over\":" + std::to_string(c.pixels_over) +
-               ",\"pct_over\":" + number(c.pct_over) + ",\"psnr\":" + number(c.psnr) + ",\"tolerance\":" +
-               std::to_string(c.tolerance) + ",\"box\":" + box + ",\"text\":\"" + rt::psnr_text(c.psnr) + "\"}");
+    nlohmann::json f = {{"max_diff", c.max_diff},
+                        {"mean_diff", c.mean_diff},
+                        {"pixels", c.pixels},
+                        {"pixels_over", c.pixels_over},
+                        {"pct_over", c.pct_over},
+                        {"tolerance", c.tolerance},
+                        {"psnr", c.psnr},  // identical images: +inf, which JSON writes as null
+                        {"text", rt::psnr_text(c.psnr)}};
+    f["box"] = c.box_empty() ? nlohmann::json() : nlohmann::json{c.box_x0, c.box_y0, c.box_x1, c.box_y1};
+    return out(f.dump());
 }
 
 }  // extern "C"

@@ -10,8 +10,6 @@
 
 namespace rt {
 
-// What the scene file calls each primitive (--trace names hits by it): one entry per
-// Objects/Mesh or Objects/Triangle in triangle order, and the other kinds' names.
 // The names of one kind's primitives, in one buffer: a name costs its characters and four
 // bytes, not a std::string each (a scene of many instances keeps them all for --trace).
 class NameList {
@@ -33,6 +31,8 @@ private:
     std::vector<std::pair<uint32_t, const char*>> keys_;  // (index, key) of the non-null keys, ascending
 };
 
+// What the scene file calls each primitive (--trace names hits by it): one entry per
+// Objects/Mesh or Objects/Triangle in triangle order, and the other kinds' names.
 struct ShapeNames {
     struct Mesh {
         uint32_t first_triangle = 0;    // its first triangle in Geometry::triangles

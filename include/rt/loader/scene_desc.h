@@ -35,7 +35,7 @@ struct MeshDesc {
     // Inline meshes copy the VertexData entries they use, so smooth normals are per mesh.
     std::vector<Vec3> positions;
     std::vector<uint32_t> indices;  // 3 per triangle
-    std::string source;             // where the faces came from, for messages: a PLY file's path
+    std::string source;             // where the faces came from: a PLY file's path, or a JSON pointer
     // A PLY mesh's JSON pointer (/Scene/Objects/Mesh/0/Faces/_plyFile) while its file is
     // not read yet (rt/loader/scene_tree.h, read_mesh_files); empty once read, and for
     // inline faces.

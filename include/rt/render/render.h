@@ -8,6 +8,9 @@
 
 namespace rt {
 
+// Images render in square tiles of this many pixels a side, row-major (RenderOptions::part).
+inline constexpr int kRenderTile = 16;
+
 struct RenderOptions {
     int threads = 0;   // 0: all hardware threads
     bool cull = true;  // back-face culling of camera and reflection rays (spec 2.9)
@@ -19,7 +22,7 @@ struct RenderOptions {
     // calling thread then only watches; the `threads` workers render.
     std::function<void(int tiles_done, int tiles_total)> progress;
     double progress_interval = 0.05;
-    // Renders only the 16x16 tiles t (row-major) with t % parts == part; the others stay
+    // Renders only the tiles t (kRenderTile, row-major) with t % parts == part; the others stay
     // black. A page splits one image over workers, or over calls between which it shows
     // progress, and merges the parts: each pixel is the same whichever part renders it.
     int part = 0, parts = 1;

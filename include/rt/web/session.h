@@ -12,7 +12,7 @@ namespace rt::web {
 // `options_json` ({"cull": true, "max_depth": -1, "epsilon_scale": 1, "min_weight":
 // 1e-4, "rounding": "truncate"}, each key optional, "" for none). Returns "" or the
 // command line's one-line error ("<file>: <place>: <what>"); the previous scene is
-// released either way. Warnings are kept for warnings_json.
+// released either way. Warnings are kept for scene_json.
 std::string load(const std::string& scene_path, const std::string& options_json);
 
 // The loaded scene's cameras and the warnings its loading raised, as JSON:
