@@ -69,12 +69,17 @@ def identical(a, b):
     return r.returncode == 0, (r.stdout + r.stderr).strip().splitlines()[-1:] or [""]
 
 
+_native = {}  # scene -> its images, rendered once for the Node and the page checks
+
+
 def native_images(scene, out):
-    """./raytracer's images of `scene` into `out`: {image name: path}."""
-    os.makedirs(out, exist_ok=True)
-    before = set(os.listdir(out))
-    subprocess.run([RAYTRACER, "-q", "-o", out, scene], check=True)
-    return {os.path.splitext(n)[0]: os.path.join(out, n) for n in set(os.listdir(out)) - before}
+    """./raytracer's images of `scene` (into `out` the first time): {image name: path}."""
+    if scene not in _native:
+        os.makedirs(out, exist_ok=True)
+        before = set(os.listdir(out))
+        subprocess.run([RAYTRACER, "-q", "-o", out, scene], check=True)
+        _native[scene] = {os.path.splitext(n)[0]: os.path.join(out, n) for n in set(os.listdir(out)) - before}
+    return _native[scene]
 
 
 def node_checks(shared, scenes, tmp):
@@ -153,6 +158,23 @@ def render_in_page(d, url, options):
     return d.execute_async_script(RENDER_JS, url, options)
 
 
+# The first rendered canvas as [width, height, RGBA in base64], or null while there is none.
+CANVAS_JS = """
+const c = document.querySelector('#images canvas.render');
+if (!c) return null;
+const u8 = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
+let s = ''; for (let i = 0; i < u8.length; i += 0x8000) s += String.fromCharCode.apply(null, u8.subarray(i, i + 0x8000));
+return [c.width, c.height, btoa(s)];
+"""
+
+
+def canvas_equals(canvas, native_png, ppm, what):
+    """Checks a CANVAS_JS result against a native image."""
+    write_ppm(ppm, canvas[0], canvas[1], base64.b64decode(canvas[2]))
+    same, text = identical(ppm, native_png)
+    check(same, f"  and {what} equals native ({text[0]})")
+
+
 def wait_for(d, js, timeout=120):
     t0 = time.time()
     while time.time() - t0 < timeout:
@@ -229,19 +251,11 @@ def page_checks(shared, scenes, tmp):
         d.find_element("id", "render").click()
         ok = wait_for(d, "return document.querySelectorAll('#images canvas.render').length > 0 || "
                          "document.getElementById('error').textContent", 300)
-        rgba = d.execute_script("""
-            const c = document.querySelector('#images canvas.render');
-            if (!c) return null;
-            const u8 = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
-            let s = ''; for (let i = 0; i < u8.length; i += 0x8000) s += String.fromCharCode.apply(null, u8.subarray(i, i + 0x8000));
-            return [c.width, c.height, btoa(s)];""")
+        rgba = d.execute_script(CANVAS_JS)
+        knot_png = list(native_images(os.path.join(knot, "knot.json"), os.path.join(tmp, "native-knot")).values())[0]
         if check(ok and rgba is not None, "a scene given through the file input renders (scenes/knot: "
                  + d.find_element("id", "error").text + ")"):
-            native = native_images(os.path.join(knot, "knot.json"), os.path.join(tmp, "native-knot"))
-            ppm = os.path.join(tmp, "page-knot.ppm")
-            write_ppm(ppm, rgba[0], rgba[1], base64.b64decode(rgba[2]))
-            same, text = identical(ppm, list(native.values())[0])
-            check(same, f"  and its canvas equals native ({text[0]})")
+            canvas_equals(rgba, knot_png, os.path.join(tmp, "page-knot.ppm"), "its canvas")
 
         # The same scene dropped onto the page (a drop event carrying the files).
         d.get(base + "index.html")
@@ -256,17 +270,9 @@ def page_checks(shared, scenes, tmp):
             })().then(done, done);""")
         wait_for(d, "return window.app.scene === 'knot.json' && !document.getElementById('render').disabled")
         d.find_element("id", "render").click()
-        dropped = wait_for(d, """const c = document.querySelector('#images canvas.render');
-            if (!c) return null;
-            const u8 = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
-            let s = ''; for (let i = 0; i < u8.length; i += 0x8000) s += String.fromCharCode.apply(null, u8.subarray(i, i + 0x8000));
-            return [c.width, c.height, btoa(s)];""", 300)
+        dropped = wait_for(d, CANVAS_JS, 300)
         if check(dropped is not None, "a scene dropped onto the page renders (scenes/knot)"):
-            ppm = os.path.join(tmp, "page-knot-dropped.ppm")
-            write_ppm(ppm, dropped[0], dropped[1], base64.b64decode(dropped[2]))
-            same, text = identical(ppm, list(native_images(os.path.join(knot, "knot.json"),
-                                                           os.path.join(tmp, "native-knot-2")).values())[0])
-            check(same, f"  and its canvas equals native ({text[0]})")
+            canvas_equals(dropped, knot_png, os.path.join(tmp, "page-knot-dropped.ppm"), "its canvas")
 
         # A bad scene: the command line's line, next to the file's name; the page keeps working.
         bad = json.load(open(os.path.join(shared, "scenes", "hw1", "simple.json"), encoding="utf-8"))
