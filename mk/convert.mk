@@ -1,4 +1,5 @@
-# rtconvert: the scene converter (XML <-> JSON, OBJ + MTL -> JSON + PLY, scene -> OBJ + MTL).
+# rtconvert: the scene converter (XML <-> JSON, OBJ + MTL -> JSON + PLY, scene -> OBJ + MTL,
+# glTF <-> JSON + PLY).
 # XML support is in the library (the renderer reads .xml scenes too), so everything
 # links pugixml (libpugixml-dev) and tinyobjloader's double-precision build
 # (libtinyobjloader-dev).
@@ -11,6 +12,9 @@
 # where both libraries are found (docs/dist.md).
 $(eval $(call optional_library,RT_HAVE_PUGIXML,pugixml.hpp,-lpugixml,RT_NO_XML))
 $(eval $(call optional_library,RT_HAVE_TINYOBJ,tiny_obj_loader.h,-ltinyobjloader_double,RT_NO_OBJ))
+# glTF: tinygltf (libtinygltf-dev), header-only here (src/convert/gltf_io.cpp compiles its
+# code), so nothing to link; without it (RT_NO_GLTF) glTF files are refused with one line.
+$(eval $(call optional_library,RT_HAVE_TINYGLTF,tiny_gltf.h,,RT_NO_GLTF))
 
 ifeq ($(RT_HAVE_PUGIXML)$(RT_HAVE_TINYOBJ),11)
 ifndef RT_TARBALL

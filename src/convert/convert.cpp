@@ -5,13 +5,14 @@
 #include <filesystem>
 #include <string>
 
-#include "obj_import.h"
+#include "gltf_io.h"
 #include "rt/convert/convert.h"
 #include "rt/core/error.h"
 #include "rt/io/atomic_file.h"
 #include "rt/io/files.h"
 #include "rt/loader/load_scene.h"
 #include "rt/loader/scene_tree.h"
+#include "scene_import.h"
 #include "xml_writer.h"
 
 namespace fs = std::filesystem;
@@ -75,6 +76,7 @@ SceneFormat scene_format_of(const std::string& path) {
     if (ext == ".json") return SceneFormat::Json;
     if (ext == ".xml") return SceneFormat::Xml;
     if (ext == ".obj") return SceneFormat::Obj;
+    if (ext == ".gltf" || ext == ".glb") return SceneFormat::Gltf;
     return SceneFormat::Unknown;
 }
 
@@ -89,15 +91,23 @@ std::string json_to_xml_text(const std::string& json_text, const std::string& pa
 ConvertResult convert_file(const std::string& input, const std::string& output, const ConvertOptions& options) {
     const SceneFormat from = scene_format_of(input), to = scene_format_of(output);
     if (from == SceneFormat::Unknown)
-        throw InputError(input + ": unknown input format (the name must end in .json, .xml or .obj)");
+        throw InputError(input + ": unknown input format (the name must end in .json, .xml, .obj, .gltf or .glb)");
     if (to == SceneFormat::Unknown)
-        throw InputError(output + ": unknown output format (the name must end in .json, .xml or .obj)");
-    if (from == SceneFormat::Obj && to == SceneFormat::Obj)
-        throw InputError(output + ": OBJ to OBJ is not a conversion");
+        throw InputError(output + ": unknown output format (the name must end in .json, .xml, .obj, .gltf or .glb)");
+    const bool model_in = from == SceneFormat::Obj || from == SceneFormat::Gltf;
+    if (model_in && (to == SceneFormat::Obj || to == SceneFormat::Gltf))
+        throw InputError(output + ": OBJ and glTF convert to and from scene files (.json, .xml), not to each other");
     check_distinct(input, output);
     ConvertResult result;
     const fs::path out_dir = folder_of(output);
     const std::string out_stem = fs::path(output).stem().string();
+
+    if (to == SceneFormat::Gltf) {
+        const SceneDesc scene = load_scene(input);
+        result.warnings = scene.warnings;
+        result.written = write_gltf(scene, output, options, result);
+        return result;
+    }
 
     if (to == SceneFormat::Obj) {
         SceneDesc scene = load_scene(input);
@@ -116,11 +126,12 @@ ConvertResult convert_file(const std::string& input, const std::string& output, 
         return result;
     }
 
-    if (from == SceneFormat::Obj) {
+    if (model_in) {
         ConvertOptions o = options;
         if (o.width < 1 || o.height < 1) throw InputError(output + ": image size must be positive");
-        if (o.image_name.empty()) o.image_name = out_stem + ".png";
-        ObjImport imp = import_obj(input, o, out_stem);
+        // glTF names each camera's image itself (<stem>.png, or <stem>_<n>.png for several).
+        if (o.image_name.empty() && from == SceneFormat::Obj) o.image_name = out_stem + ".png";
+        SceneImport imp = from == SceneFormat::Obj ? import_obj(input, o, out_stem) : import_gltf(input, o, out_stem);
         result.warnings = std::move(imp.warnings);
         result.notes = std::move(imp.notes);
         const std::string text = tree_text(imp.scene, to, output);

@@ -1,5 +1,6 @@
 // rtconvert: converts scenes between the course's XML format, our JSON format,
-// Wavefront OBJ (+MTL) and binary PLY. See rt/convert/convert.h and the README.
+// Wavefront OBJ (+MTL), glTF 2.0 and binary PLY. See rt/convert/convert.h and the README.
+#include <cmath>
 #include <cstdio>
 #include <new>
 #include <string>
@@ -13,15 +14,19 @@ namespace {
 
 const rt::cli::Program kProgram{
     "rtconvert", "rtconvert 1.0",
-    "usage: rtconvert [--shading auto|flat|smooth] [--size WxH] [--image NAME] [--sphere-segments N] [-q]\n"
-    "                 INPUT OUTPUT",
+    "usage: rtconvert [--shading auto|flat|smooth] [--size WxH] [--image NAME] [--camera N|all]\n"
+    "                 [--bake-transforms] [--light-scale X] [--sphere-segments N] [-q] INPUT OUTPUT",
     "Converts INPUT to OUTPUT, the direction chosen by their extensions:\n"
     "  scene.xml  -> scene.json   the course's XML format to JSON (as the course converted its scenes)\n"
     "  scene.json -> scene.xml    and back; relative PLY paths follow the output to its folder\n"
     "  model.obj  -> scene.json   OBJ (+MTL) to a JSON scene and one binary PLY per mesh\n"
     "                             (scene_1.ply, ...) beside it, with a camera framing the model,\n"
     "                             an ambient and a point light (also -> scene.xml)\n"
-    "  scene.json -> model.obj    a scene (JSON or XML) to OBJ + MTL (model.mtl) beside it\n",
+    "  scene.json -> model.obj    a scene (JSON or XML) to OBJ + MTL (model.mtl) beside it\n"
+    "  scene.gltf -> scene.json   glTF 2.0 (.gltf or .glb) to a JSON scene and one binary PLY per\n"
+    "                             mesh beside it: nodes as transformations and instances, cameras,\n"
+    "                             point lights, materials (docs/gltf.md)\n"
+    "  scene.json -> scene.gltf   a scene to glTF 2.0 (+ scene.bin), or to one .glb file\n",
     "exit status: 0 converted, 1 bad input or an output could not be written, 2 usage error"};
 
 }  // namespace
@@ -33,7 +38,8 @@ int main(int argc, char** argv) {
     std::vector<std::string> files;
     CLI::App app;
     cli::setup(app, kProgram);
-    const std::string obj_import = "options (OBJ import)", obj_export = "options (OBJ export)";
+    const std::string obj_import = "options (OBJ and glTF import)", gltf_import = "options (glTF import)",
+                      obj_export = "options (OBJ and glTF export)";
     cli::add_choice(
         app, "--shading", "auto (default: smooth where the OBJ has normals or smoothing groups), flat or smooth",
         options.shading,
@@ -45,11 +51,24 @@ int main(int argc, char** argv) {
                        if (x == std::string::npos) cli::usage_error("--size takes WIDTHxHEIGHT, got '" + v + "'");
                        options.width = static_cast<int>(cli::whole_number("--size", v.substr(0, x), 1, 16384));
                        options.height = static_cast<int>(cli::whole_number("--size", v.substr(x + 1), 1, 16384));
+                       options.size_given = true;
                    })
         ->group(obj_import);
     cli::add_text(app, "--image", "NAME", "the camera's image name (default: OUTPUT's stem + .png)", options.image_name,
                   "a name")
         ->group(obj_import);
+    cli::add_value(app, "--camera", "N|all", "which glTF camera: the N-th of the file's cameras, or all (default 1)",
+                   [&options](const std::string& v) {
+                       options.camera = v == "all" ? 0 : static_cast<int>(cli::whole_number("--camera", v, 1, 1 << 20));
+                   })
+        ->group(gltf_import);
+    app.add_flag("--bake-transforms", options.bake_transforms,
+                 "apply node matrices to the vertices instead of writing Transformations and instances")
+        ->group(gltf_import);
+    cli::add_number(app, "--light-scale", "X",
+                    "course Intensity per candela of a glTF point light (default 255/(683 pi), docs/gltf.md)",
+                    options.light_scale, "a positive number", [](double x) { return x > 0 && std::isfinite(x); })
+        ->group(gltf_import);
     cli::add_whole(app, "--sphere-segments", "N", "segments around each tessellated sphere (default 48)",
                    options.sphere_segments, 3, 4096)
         ->group(obj_export);

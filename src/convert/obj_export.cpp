@@ -78,6 +78,23 @@ std::string mtl_material(const MaterialDesc& m, size_t index) {
 
 }  // namespace
 
+ExportFrame export_frame(const SceneDesc& scene, int sphere_segments) {
+    // The scene's extent sizes the planes.
+    Bounds b;
+    for (const MeshDesc& m : scene.meshes)
+        if (!m.instanced)
+            for (const Vec3& p : m.positions) b.add(m.transform.point(p));
+    for_each_shape([&](auto k) {
+        using S = decltype(k);
+        for (const typename S::Desc& e : scene.all<S>()) S::extent(e, scene.meshes, [&b](Vec3 p) { b.add(p); });
+    });
+    for (const CameraDesc& c : scene.cameras) b.add(c.position);
+    for (const PointLightDesc& l : scene.point_lights) b.add(l.position);
+    const Vec3 center = b.empty() ? Vec3{0, 0, 0} : (b.lo + b.hi) * Real(0.5);
+    const Real extent = b.empty() ? Real(1) : std::max(length(b.hi - b.lo), Real(1));
+    return ExportFrame{sphere_segments, center, extent, &scene.meshes};
+}
+
 ObjText scene_to_obj(const SceneDesc& scene, const std::string& mtl_file_name, int sphere_segments) {
     ObjText out;
     ObjWriter w;
@@ -92,20 +109,6 @@ ObjText scene_to_obj(const SceneDesc& scene, const std::string& mtl_file_name, i
                   ", intensity " + vec(scene.point_lights[i].intensity) + "\n";
     w.text += "mtllib " + mtl_file_name + "\n";
 
-    // The scene's extent sizes the planes.
-    Bounds b;
-    for (const MeshDesc& m : scene.meshes)
-        if (!m.instanced)
-            for (const Vec3& p : m.positions) b.add(m.transform.point(p));
-    for_each_shape([&](auto k) {
-        using S = decltype(k);
-        for (const typename S::Desc& e : scene.all<S>()) S::extent(e, scene.meshes, [&b](Vec3 p) { b.add(p); });
-    });
-    for (const CameraDesc& c : scene.cameras) b.add(c.position);
-    for (const PointLightDesc& l : scene.point_lights) b.add(l.position);
-    const Vec3 center = b.empty() ? Vec3{0, 0, 0} : (b.lo + b.hi) * Real(0.5);
-    const Real extent = b.empty() ? Real(1) : std::max(length(b.hi - b.lo), Real(1));
-
     auto write = [&w](const std::string& name, uint32_t material, const Polygons& poly) {
         w.object(name, material, poly.smooth);
         const size_t base = w.vertices;
@@ -119,7 +122,7 @@ ObjText scene_to_obj(const SceneDesc& scene, const std::string& mtl_file_name, i
     }
 
     // The other kinds (rt/shapes/shapes.h) as their polygons.
-    const ExportFrame frame{sphere_segments, center, extent, &scene.meshes};
+    const ExportFrame frame = export_frame(scene, sphere_segments);
     for_each_shape([&](auto k) {
         using S = decltype(k);
         const std::vector<typename S::Desc>& list = scene.all<S>();

@@ -19,9 +19,9 @@
 #include <unordered_map>
 #include <utility>
 
-#include "obj_import.h"
 #include "rt/core/error.h"
 #include "rt/io/files.h"
+#include "scene_import.h"
 
 namespace rt {
 #ifndef RT_NO_OBJ
@@ -137,11 +137,7 @@ ojson make_material(const tinyobj::material_t* m, size_t id, const std::string& 
     j["_id"] = std::to_string(id);
     if (!m) {
         kind = "default grey";
-        j["AmbientReflectance"] = "0.2 0.2 0.2";
-        j["DiffuseReflectance"] = "0.7 0.7 0.7";
-        j["SpecularReflectance"] = "0.25 0.25 0.25";
-        j["PhongExponent"] = "32";
-        return j;
+        return default_material(id);
     }
     const V3 ka = clamp_color(m->ambient, mtl_what + " Ka", warnings);
     const V3 kd = clamp_color(m->diffuse, mtl_what + " Kd", warnings);
@@ -189,16 +185,10 @@ ojson make_material(const tinyobj::material_t* m, size_t id, const std::string& 
     return j;
 }
 
-V3 add_scaled(const V3& a, const V3& d, double s) { return {a[0] + d[0] * s, a[1] + d[1] * s, a[2] + d[2] * s}; }
-V3 normalized(const V3& a) {
-    const double l = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
-    return {a[0] / l, a[1] / l, a[2] / l};
-}
-
 }  // namespace
 
-ObjImport import_obj(const std::string& obj_path, const ConvertOptions& options, const std::string& ply_prefix) {
-    ObjImport out;
+SceneImport import_obj(const std::string& obj_path, const ConvertOptions& options, const std::string& ply_prefix) {
+    SceneImport out;
     const std::string text = read_text_file(obj_path);
 
     tinyobj::attrib_t attrib;
@@ -339,44 +329,14 @@ ObjImport import_obj(const std::string& obj_path, const ConvertOptions& options,
                             ")");
     }
 
-    // Frame the bounding box: a lookAt camera in front of it, up and to the right
-    // (OBJ models are Y-up), a light up and to the left.
-    const V3 center{(lo[0] + hi[0]) / 2, (lo[1] + hi[1]) / 2, (lo[2] + hi[2]) / 2};
-    double radius = 0.5 * std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
-                                    (hi[2] - lo[2]) * (hi[2] - lo[2]));
-    if (!(radius > 0)) radius = 1;
-    const double fovy = 40, pi = pi_v<double>;
-    const double aspect = double(options.width) / double(options.height);
-    // Fit the bounding sphere in the narrower of the two fields of view.
-    const double half = std::atan(std::tan(fovy * pi / 360) * std::min(1.0, aspect));
-    const double distance = 1.1 * radius / std::sin(half);
-    const V3 eye = add_scaled(center, normalized({0.45, 0.35, 1.0}), distance);
-    const V3 light = add_scaled(center, normalized({-0.6, 1.0, 0.8}), distance);
-    const double intensity = 350 * distance * distance;
-
+    const ModelFrame frame =
+        frame_model({lo[0], lo[1], lo[2]}, {hi[0], hi[1], hi[2]}, options.width, options.height, options.image_name);
     ojson scene = ojson::object();
     scene["BackgroundColor"] = "40 44 56";
-    scene["ShadowRayEpsilon"] = num(1e-4 * radius);
+    scene["ShadowRayEpsilon"] = num(1e-4 * frame.radius);
     scene["MaxRecursionDepth"] = "6";
-    ojson camera = ojson::object();
-    camera["_id"] = "1";
-    camera["_type"] = "lookAt";
-    camera["Position"] = vec(eye);
-    camera["GazePoint"] = vec(center);
-    camera["Up"] = "0 1 0";
-    camera["FovY"] = num(fovy);
-    camera["NearDistance"] = "1";
-    camera["ImageResolution"] = std::to_string(options.width) + " " + std::to_string(options.height);
-    camera["ImageName"] = options.image_name;
-    scene["Cameras"] = {{"Camera", camera}};
-    ojson point = ojson::object();
-    point["_id"] = "1";
-    point["Position"] = vec(light);
-    point["Intensity"] = vec({intensity, intensity, intensity});
-    ojson lights = ojson::object();
-    lights["AmbientLight"] = "25 25 25";
-    lights["PointLight"] = point;
-    scene["Lights"] = lights;
+    scene["Cameras"] = {{"Camera", frame.camera}};
+    scene["Lights"] = frame.lights;
     scene["Materials"] = {{"Material", mats}};
     ojson meshes = ojson::array();
     size_t triangles = 0;
@@ -400,7 +360,7 @@ ObjImport import_obj(const std::string& obj_path, const ConvertOptions& options,
     return out;
 }
 #else
-ObjImport import_obj(const std::string& obj_path, const ConvertOptions&, const std::string&) {
+SceneImport import_obj(const std::string& obj_path, const ConvertOptions&, const std::string&) {
     throw InputError(obj_path +
                      ": OBJ import is not supported by this build (it was made without tinyobjloader, "
                      "libtinyobjloader-dev)");

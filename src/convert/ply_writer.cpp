@@ -25,11 +25,23 @@ void write_ply(const std::string& path, const std::vector<double>& positions, co
     const size_t vertices = positions.size() / 3, triangles = indices.size() / 3;
     std::string out = "ply\nformat binary_little_endian 1.0\ncomment written by rtconvert\n";
     out += "element vertex " + std::to_string(vertices) + "\n";
-    out += "property float x\nproperty float y\nproperty float z\n";
+    bool floats = true;
+    for (double x : positions) floats = floats && double(static_cast<float>(x)) == x;
+    out += floats ? "property float x\nproperty float y\nproperty float z\n"
+                  : "property double x\nproperty double y\nproperty double z\n";
     out += "element face " + std::to_string(triangles) + "\n";
     out += "property list uchar int vertex_indices\nend_header\n";
-    out.reserve(out.size() + vertices * 12 + triangles * 13);
-    for (size_t i = 0; i < vertices * 3; ++i) put_f32(out, static_cast<float>(positions[i]));
+    out.reserve(out.size() + vertices * (floats ? 12 : 24) + triangles * 13);
+    for (size_t i = 0; i < vertices * 3; ++i) {
+        if (floats) {
+            put_f32(out, static_cast<float>(positions[i]));
+        } else {
+            uint64_t bits;
+            std::memcpy(&bits, &positions[i], 8);
+            put_u32(out, uint32_t(bits));
+            put_u32(out, uint32_t(bits >> 32));
+        }
+    }
     for (size_t t = 0; t < triangles; ++t) {
         out += static_cast<char>(3);
         for (int k = 0; k < 3; ++k) put_u32(out, indices[3 * t + k]);

@@ -1,5 +1,6 @@
 // Scene converters (the rtconvert command): the course's XML format <-> our JSON
-// format, Wavefront OBJ (+MTL) -> JSON + binary PLY, and any scene -> OBJ + MTL.
+// format, Wavefront OBJ (+MTL) -> JSON + binary PLY, any scene -> OBJ + MTL, and
+// glTF 2.0 (.gltf, .glb) <-> JSON + binary PLY (docs/gltf.md).
 #pragma once
 #include <cstdint>
 #include <string>
@@ -9,8 +10,8 @@
 
 namespace rt {
 
-// A file's format by its extension, case-insensitive: .json, .xml, .obj.
-enum class SceneFormat { Json, Xml, Obj, Unknown };
+// A file's format by its extension, case-insensitive: .json, .xml, .obj, .gltf, .glb.
+enum class SceneFormat { Json, Xml, Obj, Gltf, Unknown };
 SceneFormat scene_format_of(const std::string& path);
 
 // How OBJ faces are shaded: Auto makes smooth meshes of faces that carry vertex
@@ -21,9 +22,16 @@ struct ConvertOptions {
     // OBJ import
     ObjShading shading = ObjShading::Auto;
     int width = 800, height = 600;  // the camera's ImageResolution
+    bool size_given = false;        // --size: glTF cameras take it instead of their aspect ratio
     std::string image_name;         // the camera's ImageName; default: the output's stem + ".png"
-    // scene -> OBJ export: a sphere becomes a UV sphere of this many segments around
-    // and half as many rings
+    // glTF import
+    int camera = 1;                // the glTF camera to keep, 1-based; 0: all of them
+    bool bake_transforms = false;  // node matrices applied to the vertices, not kept as Transformations
+    // course Intensity = candela x light_scale (docs/gltf.md): the pixel value, 0..255, a
+    // glTF point light gives a white diffuse surface where Blender renders it 0..1
+    double light_scale = 255 / (683 * 3.141592653589793);
+    // scene -> OBJ or glTF export: a sphere becomes a UV sphere of this many segments
+    // around and half as many rings
     int sphere_segments = 48;
 };
 
@@ -39,6 +47,8 @@ struct ConvertResult {
 //                    adjusted whenever the output lands in another folder)
 //   .obj  -> .json/.xml  scene file + one binary PLY per mesh beside it (<stem>_<n>.ply)
 //   .json/.xml -> .obj   OBJ + MTL (<stem>.mtl) beside it
+//   .gltf/.glb -> .json/.xml  scene file + one binary PLY per mesh beside it
+//   .json/.xml -> .gltf  glTF + its buffer (<stem>.bin) beside it; -> .glb: one file
 // Every file is written atomically. Throws rt::InputError, one line naming the file
 // and the place, for unreadable or malformed input and unwritable output.
 ConvertResult convert_file(const std::string& input, const std::string& output, const ConvertOptions& options = {});
@@ -54,7 +64,12 @@ struct ObjText {
 };
 ObjText scene_to_obj(const SceneDesc& scene, const std::string& mtl_file_name, int sphere_segments = 48);
 
-// Binary little-endian PLY of float positions (x y z per vertex) and triangles.
+// What the exports make polygons with (rt/shapes/shape.h): the scene's centre and extent
+// (planes become squares 10x its extent) and the segments of a tessellated sphere.
+ExportFrame export_frame(const SceneDesc& scene, int sphere_segments);
+
+// Binary little-endian PLY of positions (x y z per vertex) and triangles: float
+// positions, or double where some coordinate is not a float.
 // Throws rt::InputError naming `path` when it cannot be written.
 void write_ply(const std::string& path, const std::vector<double>& positions, const std::vector<uint32_t>& indices);
 

@@ -1,0 +1,384 @@
+// A loaded scene as glTF 2.0 (docs/gltf.md): each mesh, triangle, sphere (tessellated)
+// and plane (a large quad) a node, instances nodes sharing their mesh's accessors,
+// Transformations node matrices, cameras and point lights (KHR_lights_punctual) nodes,
+// materials by the table of gltf_materials.h. What glTF cannot hold exactly (the
+// course's material values, a camera's near plane and image, the scene's settings,
+// positions that are not floats, the exact sphere or plane behind a tessellation) goes
+// into "ceng795" extras, which the import uses while they agree with the glTF values.
+#ifndef RT_NO_GLTF
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wshadow"
+#include <tiny_gltf.h>
+#pragma GCC diagnostic pop
+#endif
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <map>
+
+#include "gltf_io.h"
+#include "gltf_materials.h"
+#include "rt/convert/convert.h"
+#include "rt/core/error.h"
+#include "rt/loader/scene_desc.h"
+#include "scene_import.h"
+
+namespace rt {
+#ifndef RT_NO_GLTF
+namespace {
+
+using json = nlohmann::json;
+
+std::array<double, 3> arr(const Vec3& v) { return {double(v.x), double(v.y), double(v.z)}; }
+
+// One buffer; each accessor its own view.
+class BufferWriter {
+public:
+    explicit BufferWriter(tinygltf::Model& model) : model_(model) { model_.buffers.emplace_back(); }
+
+    int floats(const std::vector<float>& v, int components, bool bounds) {
+        const int a = add(v.data(), v.size() * 4, TINYGLTF_TARGET_ARRAY_BUFFER, TINYGLTF_COMPONENT_TYPE_FLOAT,
+                          v.size() / size_t(components), components == 3 ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_SCALAR);
+        if (bounds && !v.empty()) {  // glTF requires min and max of POSITION
+            tinygltf::Accessor& acc = model_.accessors[size_t(a)];
+            acc.minValues.assign(size_t(components), HUGE_VAL);
+            acc.maxValues.assign(size_t(components), -HUGE_VAL);
+            for (size_t i = 0; i < v.size(); ++i) {
+                const size_t c = i % size_t(components);
+                acc.minValues[c] = std::min(acc.minValues[c], double(v[i]));
+                acc.maxValues[c] = std::max(acc.maxValues[c], double(v[i]));
+            }
+        }
+        return a;
+    }
+    int indices(const std::vector<uint32_t>& v) {
+        return add(v.data(), v.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
+                   v.size(), TINYGLTF_TYPE_SCALAR);
+    }
+
+private:
+    int add(const void* data, size_t bytes, int target, int component, size_t count, int type) {
+        std::vector<unsigned char>& buf = model_.buffers[0].data;
+        tinygltf::BufferView view;
+        view.buffer = 0;
+        view.byteOffset = buf.size();
+        view.byteLength = bytes;
+        view.target = target;
+        buf.insert(buf.end(), static_cast<const unsigned char*>(data), static_cast<const unsigned char*>(data) + bytes);
+        model_.bufferViews.push_back(view);
+        tinygltf::Accessor acc;
+        acc.bufferView = int(model_.bufferViews.size() - 1);
+        acc.componentType = component;
+        acc.count = count;
+        acc.type = type;
+        model_.accessors.push_back(acc);
+        return int(model_.accessors.size() - 1);
+    }
+    tinygltf::Model& model_;
+};
+
+// A triangle mesh's accessors: POSITION, indices, and NORMAL for smooth shading.
+struct Geometry {
+    int positions = -1, indices = -1, normals = -1;
+    json extras;  // the mesh's "ceng795" extras (exact positions, sphere, plane), or null
+};
+
+// Area-weighted vertex normals (glTF wants unit normals; the import does not read them:
+// the renderer makes its own).
+std::vector<float> vertex_normals(const std::vector<Vec3>& p, const std::vector<uint32_t>& idx) {
+    std::vector<Vec3> n(p.size(), Vec3{0, 0, 0});
+    for (size_t i = 0; i + 2 < idx.size(); i += 3) {
+        const Vec3 c = cross(p[idx[i + 1]] - p[idx[i]], p[idx[i + 2]] - p[idx[i]]);
+        for (int k = 0; k < 3; ++k) n[idx[i + size_t(k)]] = n[idx[i + size_t(k)]] + c;
+    }
+    std::vector<float> out;
+    out.reserve(3 * n.size());
+    for (const Vec3& v : n) {
+        const Real l = length(v);
+        const Vec3 u = l > 0 ? v / l : Vec3{0, 1, 0};
+        out.insert(out.end(), {float(u.x), float(u.y), float(u.z)});
+    }
+    return out;
+}
+
+Geometry add_geometry(BufferWriter& buffers, const std::vector<Vec3>& positions, const std::vector<uint32_t>& indices,
+                      bool smooth) {
+    Geometry g;
+    std::vector<float> p;
+    p.reserve(3 * positions.size());
+    bool exact = true;
+    for (const Vec3& v : positions)
+        for (int k = 0; k < 3; ++k) {
+            p.push_back(float(v[k]));
+            exact = exact && double(p.back()) == double(v[k]);
+        }
+    g.positions = buffers.floats(p, 3, true);
+    g.indices = buffers.indices(indices);
+    if (smooth) g.normals = buffers.floats(vertex_normals(positions, indices), 3, false);
+    if (!exact) {  // positions a float cannot hold: their doubles
+        json exact_positions = json::array();
+        for (const Vec3& v : positions)
+            for (int k = 0; k < 3; ++k) exact_positions.push_back(double(v[k]));
+        g.extras["positions"] = std::move(exact_positions);
+    }
+    return g;
+}
+
+// A polygon list (rt/shapes/shape.h) as a triangle list, fan-split.
+std::vector<uint32_t> triangles_of(const Polygons& poly) {
+    std::vector<uint32_t> out;
+    for (const std::vector<uint32_t>& f : poly.faces)
+        for (size_t k = 2; k < f.size(); ++k) out.insert(out.end(), {f[0], f[k - 1], f[k]});
+    return out;
+}
+
+tinygltf::Value extras_of(const json& ceng795) { return to_value(json{{kGltfExtrasKey, ceng795}}); }
+
+// A row-major affine as glTF's column-major 4x4; none for the identity.
+std::vector<double> node_matrix(const Affine& m) {
+    if (m.is_identity()) return {};
+    std::vector<double> out(16, 0.0);
+    for (int c = 0; c < 4; ++c)
+        for (int r = 0; r < 3; ++r) out[size_t(4 * c + r)] = m.m[r][c];
+    out[15] = 1;
+    return out;
+}
+
+// The rotation taking glTF's camera frame (looking down -z, +y up) to the camera's
+// (spec 2.1: w = -gaze, u = up x w, v = w x u), as a unit quaternion x y z w.
+std::vector<double> camera_rotation(const CameraDesc& c) {
+    const Vec3 w = normalize(-c.gaze), u = normalize(cross(c.up, w)), v = cross(w, u);
+    const double m[3][3] = {{u.x, v.x, w.x}, {u.y, v.y, w.y}, {u.z, v.z, w.z}};
+    double x, y, z, s;
+    const double tr = m[0][0] + m[1][1] + m[2][2];
+    if (tr > 0) {
+        s = 2 * std::sqrt(1 + tr);
+        return {(m[2][1] - m[1][2]) / s, (m[0][2] - m[2][0]) / s, (m[1][0] - m[0][1]) / s, s / 4};
+    }
+    if (m[0][0] > m[1][1] && m[0][0] > m[2][2]) {
+        s = 2 * std::sqrt(1 + m[0][0] - m[1][1] - m[2][2]);
+        x = s / 4, y = (m[0][1] + m[1][0]) / s, z = (m[0][2] + m[2][0]) / s;
+        return {x, y, z, (m[2][1] - m[1][2]) / s};
+    }
+    if (m[1][1] > m[2][2]) {
+        s = 2 * std::sqrt(1 + m[1][1] - m[0][0] - m[2][2]);
+        x = (m[0][1] + m[1][0]) / s, y = s / 4, z = (m[1][2] + m[2][1]) / s;
+        return {x, y, z, (m[0][2] - m[2][0]) / s};
+    }
+    s = 2 * std::sqrt(1 + m[2][2] - m[0][0] - m[1][1]);
+    x = (m[0][2] + m[2][0]) / s, y = (m[1][2] + m[2][1]) / s, z = s / 4;
+    return {x, y, z, (m[1][0] - m[0][1]) / s};
+}
+
+class Exporter {
+public:
+    Exporter(const SceneDesc& scene, tinygltf::Model& model, const ConvertOptions& options, ConvertResult& result)
+        : scene_(scene), model_(model), options_(options), result_(result), buffers_(model) {}
+
+    void run() {
+        model_.asset.version = "2.0";
+        model_.asset.generator = "rtconvert (raytracer, CENG 795 scene format)";
+        model_.scenes.emplace_back();
+        model_.defaultScene = 0;
+        tinygltf::Scene& s = model_.scenes[0];
+        s.name = scene_.path;
+        s.extras = extras_of({{"backgroundColor", arr(scene_.background)},
+                              {"shadowRayEpsilon", double(scene_.shadow_ray_epsilon)},
+                              {"intersectionTestEpsilon", double(scene_.intersection_test_epsilon)},
+                              {"maxRecursionDepth", scene_.max_recursion_depth},
+                              {"ambientLight", arr(scene_.ambient_light)}});
+        add_materials();
+        add_meshes();
+        add_shapes();
+        add_cameras();
+        add_lights();
+        for (size_t i = 0; i < model_.nodes.size(); ++i) model_.scenes[0].nodes.push_back(int(i));
+    }
+
+private:
+    void add_materials() {
+        bool transmission = false, ior = false, volume = false;
+        for (const MaterialDesc& m : scene_.materials) {
+            const PbrMaterial p = pbr_of(m);
+            tinygltf::Material g;
+            g.name = "Material " + m.id;
+            g.pbrMetallicRoughness.baseColorFactor = {p.base[0], p.base[1], p.base[2], 1.0};
+            g.pbrMetallicRoughness.metallicFactor = p.metallic;
+            g.pbrMetallicRoughness.roughnessFactor = p.roughness;
+            if (p.transmission > 0) {
+                transmission = ior = true;
+                g.extensions["KHR_materials_transmission"] = to_value({{"transmissionFactor", p.transmission}});
+                g.extensions["KHR_materials_ior"] = to_value({{"ior", p.ior}});
+                if (std::isfinite(p.attenuation_distance)) {
+                    volume = true;
+                    g.extensions["KHR_materials_volume"] =
+                        to_value({{"thicknessFactor", 1.0},
+                                  {"attenuationDistance", p.attenuation_distance},
+                                  {"attenuationColor", {p.attenuation[0], p.attenuation[1], p.attenuation[2]}}});
+                }
+            }
+            g.extras = extras_of(material_extras(m));
+            model_.materials.push_back(std::move(g));
+        }
+        if (transmission) model_.extensionsUsed.push_back("KHR_materials_transmission");
+        if (ior) model_.extensionsUsed.push_back("KHR_materials_ior");
+        if (volume) model_.extensionsUsed.push_back("KHR_materials_volume");
+    }
+
+    // A glTF mesh of one primitive: `geometry` drawn with `material`, made once per pair.
+    int mesh_of(size_t geometry, uint32_t material, const std::string& name) {
+        const auto key = std::make_pair(geometry, material);
+        if (const auto it = meshes_.find(key); it != meshes_.end()) return it->second;
+        const Geometry& g = geometries_[geometry];
+        tinygltf::Primitive prim;
+        prim.mode = TINYGLTF_MODE_TRIANGLES;
+        prim.attributes["POSITION"] = g.positions;
+        if (g.normals >= 0) prim.attributes["NORMAL"] = g.normals;
+        prim.indices = g.indices;
+        prim.material = int(material);
+        tinygltf::Mesh mesh;
+        mesh.name = name;
+        mesh.primitives.push_back(prim);
+        if (!g.extras.is_null()) mesh.extras = extras_of(g.extras);
+        model_.meshes.push_back(std::move(mesh));
+        meshes_[key] = int(model_.meshes.size() - 1);
+        return meshes_[key];
+    }
+
+    void add_node(const std::string& name, int mesh, const Affine& transform) {
+        tinygltf::Node n;
+        n.name = name;
+        n.mesh = mesh;
+        n.matrix = node_matrix(transform);
+        model_.nodes.push_back(std::move(n));
+    }
+
+    // Meshes and triangles: one geometry each. One that is drawn as an instance of
+    // itself (moved, or shown by instances) is drawn by its InstanceDesc, below.
+    void add_meshes() {
+        for (size_t i = 0; i < scene_.meshes.size(); ++i) {
+            const MeshDesc& m = scene_.meshes[i];
+            geometries_.push_back(add_geometry(buffers_, m.positions, m.indices, m.shading == ShadingMode::Smooth));
+            const std::string name = std::string(m.triangle_object ? "Triangle " : "Mesh ") + m.id;
+            if (!m.instanced) add_node(name, mesh_of(i, m.material, name), Affine{});
+        }
+    }
+
+    void add_shapes() {
+        const ExportFrame frame = export_frame(scene_, options_.sphere_segments);
+        // Instances, the meshes drawn as themselves first (the loader's order).
+        for (const InstanceDesc& d : scene_.all<Instance>()) {
+            const MeshDesc& m = scene_.meshes.at(d.mesh);
+            const std::string name = std::string(d.key ? d.key : Instance::kKey) + " " + d.id;
+            add_node(name, mesh_of(d.mesh, d.material, std::string(m.triangle_object ? "Triangle " : "Mesh ") + m.id),
+                     d.transform);
+        }
+        for (const SphereDesc& d : scene_.all<Sphere>()) {
+            SphereDesc local = d;
+            local.transform = Affine{};
+            const Polygons poly = Sphere::polygons(local, frame);
+            geometries_.push_back(add_geometry(buffers_, poly.vertices, triangles_of(poly), true));
+            geometries_.back().extras["sphere"] = {{"center", arr(d.center)}, {"radius", double(d.radius)}};
+            const std::string name = "Sphere " + d.id;
+            add_node(name, mesh_of(geometries_.size() - 1, d.material, name), d.transform);
+        }
+        for (const PlaneDesc& d : scene_.all<Plane>()) {
+            const Polygons poly = Plane::polygons(d, frame);
+            geometries_.push_back(add_geometry(buffers_, poly.vertices, triangles_of(poly), false));
+            geometries_.back().extras["plane"] = {{"point", arr(d.point)}, {"normal", arr(d.normal)}};
+            const std::string name = "Plane " + d.id;
+            add_node(name, mesh_of(geometries_.size() - 1, d.material, name), Affine{});
+        }
+        if (!scene_.all<Sphere>().empty())
+            result_.notes.push_back(std::to_string(scene_.all<Sphere>().size()) + " spheres tessellated, " +
+                                    std::to_string(options_.sphere_segments) + " segments");
+        if (!scene_.all<Plane>().empty())
+            result_.notes.push_back(std::to_string(scene_.all<Plane>().size()) + " planes as squares of side " +
+                                    course_number(10 * double(frame.extent)));
+    }
+
+    void add_cameras() {
+        for (size_t i = 0; i < scene_.cameras.size(); ++i) {
+            const CameraDesc& c = scene_.cameras[i];
+            const std::string where = "camera " + std::to_string(i + 1);
+            tinygltf::Camera g;
+            g.type = "perspective";
+            g.name = "Camera " + std::to_string(i + 1);
+            const double d = double(c.near_distance);
+            g.perspective.yfov = std::atan(double(c.top) / d) - std::atan(double(c.bottom) / d);
+            g.perspective.aspectRatio = double(c.width) / double(c.height);
+            g.perspective.znear = d;
+            if (c.left != -c.right || c.bottom != -c.top)
+                result_.warnings.push_back(scene_.path + ": " + where +
+                                           ": its near plane is off-centre; glTF keeps its vertical field of view "
+                                           "only (the exact camera is in the extras)");
+            model_.cameras.push_back(g);
+            tinygltf::Node n;
+            n.name = g.name;
+            n.camera = int(model_.cameras.size() - 1);
+            n.translation = {double(c.position.x), double(c.position.y), double(c.position.z)};
+            n.rotation = camera_rotation(c);
+            n.extras = extras_of({{"camera",
+                                   {{"position", arr(c.position)},
+                                    {"gaze", arr(c.gaze)},
+                                    {"up", arr(c.up)},
+                                    {"nearPlane", {double(c.left), double(c.right), double(c.bottom), double(c.top)}},
+                                    {"nearDistance", d},
+                                    {"imageResolution", {c.width, c.height}},
+                                    {"imageName", c.image_name}}}});
+            model_.nodes.push_back(std::move(n));
+        }
+    }
+
+    void add_lights() {
+        for (size_t i = 0; i < scene_.point_lights.size(); ++i) {
+            const PointLightDesc& l = scene_.point_lights[i];
+            tinygltf::Light g;
+            g.type = "point";
+            g.name = "PointLight " + std::to_string(i + 1);
+            const double peak = std::max({double(l.intensity.x), double(l.intensity.y), double(l.intensity.z)});
+            g.color = peak > 0 ? std::vector<double>{l.intensity.x / peak, l.intensity.y / peak, l.intensity.z / peak}
+                               : std::vector<double>{1, 1, 1};
+            g.intensity = std::max(peak, 0.0) / options_.light_scale;
+            g.extras = extras_of({{"intensity", arr(l.intensity)}});
+            model_.lights.push_back(g);
+            tinygltf::Node n;
+            n.name = g.name;
+            n.translation = {double(l.position.x), double(l.position.y), double(l.position.z)};
+            n.extensions["KHR_lights_punctual"] = to_value({{"light", int(model_.lights.size() - 1)}});
+            model_.nodes.push_back(std::move(n));
+        }
+        if (!scene_.point_lights.empty()) model_.extensionsUsed.push_back("KHR_lights_punctual");
+        if (scene_.ambient_light.x > 0 || scene_.ambient_light.y > 0 || scene_.ambient_light.z > 0)
+            result_.notes.push_back("ambient light: glTF has none; kept in the scene's extras");
+    }
+
+    const SceneDesc& scene_;
+    tinygltf::Model& model_;
+    const ConvertOptions& options_;
+    ConvertResult& result_;
+    BufferWriter buffers_;
+    std::vector<Geometry> geometries_;
+    std::map<std::pair<size_t, uint32_t>, int> meshes_;
+};
+
+}  // namespace
+
+std::vector<std::string> write_gltf(const SceneDesc& scene, const std::string& path, const ConvertOptions& options,
+                                    ConvertResult& result) {
+    tinygltf::Model model;
+    Exporter(scene, model, options, result).run();
+    result.notes.push_back(std::to_string(model.nodes.size()) + " nodes, " + std::to_string(model.meshes.size()) +
+                           " meshes, " + std::to_string(model.materials.size()) + " materials, " +
+                           std::to_string(model.cameras.size()) + " cameras, " + std::to_string(model.lights.size()) +
+                           " point lights");
+    return save_gltf(model, path);
+}
+#else
+std::vector<std::string> write_gltf(const SceneDesc&, const std::string& path, const ConvertOptions&, ConvertResult&) {
+    throw InputError(path + ": glTF is not supported by this build (it was made without tinygltf, libtinygltf-dev)");
+}
+#endif  // RT_NO_GLTF
+
+}  // namespace rt

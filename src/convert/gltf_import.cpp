@@ -1,0 +1,762 @@
+// glTF 2.0 -> the course's JSON (docs/gltf.md): triangle primitives become meshes (one
+// PLY per accessor pair, further uses MeshInstances of the first), the node hierarchy
+// Composite transformations, perspective cameras and KHR_lights_punctual point lights
+// the scene's, materials by the table of gltf_materials.h. "ceng795" extras written by
+// the export are used where they still agree with what the glTF says.
+#ifndef RT_NO_GLTF
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wshadow"
+#include <tiny_gltf.h>
+#pragma GCC diagnostic pop
+#endif
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <map>
+#include <set>
+
+#include "gltf_io.h"
+#include "gltf_materials.h"
+#include "rt/core/affine.h"
+#include "rt/core/error.h"
+#include "scene_import.h"
+
+namespace rt {
+#ifndef RT_NO_GLTF
+namespace {
+
+using ojson = nlohmann::ordered_json;
+using json = nlohmann::json;
+using V3 = std::array<double, 3>;
+
+// Extensions the import reads, or may leave aside without changing what a scene shows.
+const std::set<std::string> kUnderstood = {
+    "KHR_lights_punctual",  "KHR_materials_transmission",      "KHR_materials_ior",
+    "KHR_materials_volume", "KHR_materials_emissive_strength", "KHR_texture_transform"};
+
+V3 apply(const Affine& m, const V3& p, bool point) {
+    V3 out;
+    for (int r = 0; r < 3; ++r)
+        out[size_t(r)] = m.m[r][0] * p[0] + m.m[r][1] * p[1] + m.m[r][2] * p[2] + (point ? m.m[r][3] : 0.0);
+    return out;
+}
+double norm(const V3& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+V3 sub(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
+
+// The "ceng795" object of an element's extras, or null.
+json ours(const tinygltf::Value& extras) {
+    const json j = to_json(extras);
+    if (j.is_object() && j.contains(kGltfExtrasKey)) return j[kGltfExtrasKey];
+    return nullptr;
+}
+bool vec3(const json& j, V3& out) {
+    if (!j.is_array() || j.size() != 3) return false;
+    for (size_t i = 0; i < 3; ++i) {
+        if (!j[i].is_number() || !std::isfinite(j[i].get<double>())) return false;
+        out[i] = j[i].get<double>();
+    }
+    return true;
+}
+
+// A triangle list read from one POSITION accessor and one indices accessor.
+struct Geometry {
+    std::vector<double> positions;
+    std::vector<uint32_t> indices;
+    bool smooth = false;
+    std::string where;  // /meshes/m/primitives/p, for messages
+    int base = -1;      // the Objects/Mesh _id that shows it first, once written
+    size_t ply = 0;     // its ImportedMesh
+};
+
+struct CameraUse {
+    int camera;
+    int node;
+    Affine world;
+};
+
+class Importer {
+public:
+    Importer(const std::string& path, const tinygltf::Model& model, const ConvertOptions& options,
+             const std::string& ply_prefix, const std::string& image_stem, SceneImport& out)
+        : path_(path), model_(model), options_(options), ply_prefix_(ply_prefix), image_stem_(image_stem), out_(out) {}
+
+    void run() {
+        for (size_t i = 0; i < model_.extensionsRequired.size(); ++i)
+            if (!kUnderstood.count(model_.extensionsRequired[i]))
+                fail("/extensionsRequired/" + std::to_string(i),
+                     "the file requires extension " + model_.extensionsRequired[i] + ", which rtconvert does not read");
+        for (const std::string& e : model_.extensionsUsed)
+            if (!kUnderstood.count(e)) warn("extension " + e + " is not read: what it adds is left out");
+        traverse();
+        ojson scene = ojson::object();
+        scene_settings(scene);
+        scene["Cameras"] = {{"Camera", cameras()}};
+        scene["Lights"] = lights();
+        scene["Materials"] = {{"Material", materials()}};
+        if (!transforms_.empty()) scene["Transformations"] = {{"Composite", transforms_}};
+        if (!vertex_data_.empty()) scene["VertexData"] = {{"_data", vertex_data_}, {"_type", "xyz"}};
+        ojson objects = ojson::object();
+        if (!mesh_objects_.empty()) objects["Mesh"] = mesh_objects_;
+        if (!instance_objects_.empty()) objects["MeshInstance"] = instance_objects_;
+        if (!sphere_objects_.empty()) objects["Sphere"] = sphere_objects_;
+        if (!plane_objects_.empty()) objects["Plane"] = plane_objects_;
+        if (objects.empty()) fail("", "no triangle meshes in the scene");
+        scene["Objects"] = objects;
+        out_.scene = {{"Scene", scene}};
+        out_.notes.push_back(std::to_string(mesh_objects_.size()) + " meshes (" + std::to_string(out_.meshes.size()) +
+                             " PLY files), " + std::to_string(instance_objects_.size()) + " instances, " +
+                             std::to_string(sphere_objects_.size()) + " spheres, " +
+                             std::to_string(plane_objects_.size()) + " planes, " + std::to_string(transforms_.size()) +
+                             " transformations");
+    }
+
+private:
+    [[noreturn]] void fail(const std::string& element, const std::string& what) const {
+        throw InputError(path_ + ": " + (element.empty() ? "" : element + ": ") + what);
+    }
+    void warn(const std::string& what) { out_.warnings.push_back(path_ + ": " + what); }
+
+    // ---- Accessors ----------------------------------------------------------------
+
+    // Element k's bytes of accessor `index`, each range checked; `where` names its user.
+    struct View {
+        const unsigned char* data = nullptr;  // null: all zeros (no bufferView)
+        size_t stride = 0, count = 0;
+    };
+    View view(int index, int component, int type, const std::string& where) const {
+        if (index < 0 || size_t(index) >= model_.accessors.size())
+            fail(where, "accessor " + std::to_string(index) + " does not exist (the file has " +
+                            std::to_string(model_.accessors.size()) + ")");
+        const tinygltf::Accessor& a = model_.accessors[size_t(index)];
+        const std::string ap = "/accessors/" + std::to_string(index);
+        if (a.sparse.isSparse) fail(ap, "sparse accessors are not read");
+        if (a.type != type) fail(ap, "has the wrong type for " + where);
+        if (component >= 0 && a.componentType != component)
+            fail(ap, "has component type " + std::to_string(a.componentType) + " (" + where + " needs floats)");
+        View v;
+        v.count = a.count;
+        if (a.bufferView < 0) return v;
+        if (size_t(a.bufferView) >= model_.bufferViews.size())
+            fail(ap, "bufferView " + std::to_string(a.bufferView) + " does not exist");
+        const tinygltf::BufferView& bv = model_.bufferViews[size_t(a.bufferView)];
+        const std::string vp = "/bufferViews/" + std::to_string(a.bufferView);
+        if (bv.buffer < 0 || size_t(bv.buffer) >= model_.buffers.size())
+            fail(vp, "buffer " + std::to_string(bv.buffer) + " does not exist");
+        const std::vector<unsigned char>& buf = model_.buffers[size_t(bv.buffer)].data;
+        const int elem = tinygltf::GetComponentSizeInBytes(uint32_t(a.componentType)) *
+                         tinygltf::GetNumComponentsInType(uint32_t(a.type));
+        if (elem <= 0) fail(ap, "unknown component type " + std::to_string(a.componentType));
+        v.stride = bv.byteStride ? bv.byteStride : size_t(elem);
+        if (bv.byteOffset > buf.size() || bv.byteLength > buf.size() - bv.byteOffset)
+            fail(vp, "runs past the end of buffer " + std::to_string(bv.buffer) + " (" + std::to_string(buf.size()) +
+                         " bytes)");
+        if (a.count > 0 && (a.byteOffset > bv.byteLength || (a.count - 1) > (bv.byteLength - a.byteOffset) / v.stride ||
+                            a.byteOffset + (a.count - 1) * v.stride + size_t(elem) > bv.byteLength))
+            fail(ap, "runs past the end of its bufferView (" + std::to_string(bv.byteLength) + " bytes)");
+        v.data = buf.data() + bv.byteOffset + a.byteOffset;
+        return v;
+    }
+
+    std::vector<double> positions(int index, const std::string& where) const {
+        const View v = view(index, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, where);
+        std::vector<double> out(3 * v.count, 0.0);
+        if (!v.data) return out;
+        for (size_t i = 0; i < v.count; ++i)
+            for (size_t k = 0; k < 3; ++k) {
+                float f;
+                std::memcpy(&f, v.data + i * v.stride + 4 * k, 4);
+                if (!std::isfinite(f))
+                    fail("/accessors/" + std::to_string(index), "vertex " + std::to_string(i) + " is not finite");
+                out[3 * i + k] = f;
+            }
+        return out;
+    }
+
+    std::vector<uint32_t> indices(int index, size_t vertices, const std::string& where) const {
+        const tinygltf::Accessor* a =
+            index >= 0 && size_t(index) < model_.accessors.size() ? &model_.accessors[size_t(index)] : nullptr;
+        const int component = a ? a->componentType : -1;
+        if (a && component != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+            component != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT && component != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+            fail("/accessors/" + std::to_string(index), "indices must be unsigned integers");
+        const View v = view(index, component, TINYGLTF_TYPE_SCALAR, where + "/indices");
+        std::vector<uint32_t> out(v.count, 0);
+        for (size_t i = 0; v.data && i < v.count; ++i) {
+            const unsigned char* p = v.data + i * v.stride;
+            uint32_t x = 0;
+            if (component == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE) {
+                x = p[0];
+            } else if (component == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT) {
+                uint16_t s;
+                std::memcpy(&s, p, 2);
+                x = s;
+            } else {
+                std::memcpy(&x, p, 4);
+            }
+            if (x >= vertices)
+                fail(where, "index " + std::to_string(x) + " (element " + std::to_string(i) +
+                                ") is out of range: POSITION has " + std::to_string(vertices) + " vertices");
+            out[i] = x;
+        }
+        return out;
+    }
+
+    // The geometry of primitive p of mesh m, read once per accessor pair; nullptr for a
+    // primitive that is skipped (with a warning).
+    Geometry* geometry(int m, int p) {
+        const tinygltf::Primitive& prim = model_.meshes[size_t(m)].primitives[size_t(p)];
+        const std::string where = "/meshes/" + std::to_string(m) + "/primitives/" + std::to_string(p);
+        if (prim.mode != -1 && prim.mode != TINYGLTF_MODE_TRIANGLES) {
+            if (skipped_.insert(where).second)
+                warn(where + ": mode " + std::to_string(prim.mode) +
+                     " (points, lines or strips) is not a triangle list: skipped");
+            return nullptr;
+        }
+        const auto pos = prim.attributes.find("POSITION");
+        if (pos == prim.attributes.end()) {
+            if (skipped_.insert(where).second) warn(where + ": no POSITION: skipped");
+            return nullptr;
+        }
+        const auto key = std::make_pair(pos->second, prim.indices);
+        if (const auto it = geometries_.find(key); it != geometries_.end()) return &it->second;
+        Geometry g;
+        g.where = where;
+        g.positions = positions(pos->second, where + "/attributes/POSITION");
+        const size_t n = g.positions.size() / 3;
+        if (prim.indices >= 0) {
+            g.indices = indices(prim.indices, n, where);
+        } else {
+            for (uint32_t i = 0; i < n; ++i) g.indices.push_back(i);
+        }
+        if (g.indices.size() % 3) {
+            warn(where + ": " + std::to_string(g.indices.size()) + " indices, not a multiple of 3: the last " +
+                 std::to_string(g.indices.size() % 3) + " left out");
+            g.indices.resize(g.indices.size() - g.indices.size() % 3);
+        }
+        g.smooth = prim.attributes.count("NORMAL") > 0;
+        // Positions a float could not hold, kept by the export: used while they round to these.
+        const json extras = ours(model_.meshes[size_t(m)].extras);
+        if (extras.is_object() && extras.contains("positions")) {
+            const json& exact = extras["positions"];
+            bool same = exact.is_array() && exact.size() == g.positions.size();
+            for (size_t i = 0; same && i < g.positions.size(); ++i)
+                same = exact[i].is_number() && double(float(exact[i].get<double>())) == g.positions[i];
+            if (same)
+                for (size_t i = 0; i < g.positions.size(); ++i) g.positions[i] = exact[i].get<double>();
+        }
+        return &geometries_.emplace(key, std::move(g)).first->second;
+    }
+
+    // ---- Nodes ----------------------------------------------------------------------
+
+    Affine local_matrix(const tinygltf::Node& n, int index) const {
+        const std::string np = "/nodes/" + std::to_string(index);
+        if (!n.matrix.empty()) {
+            if (n.matrix.size() != 16) fail(np + "/matrix", "needs 16 numbers");
+            if (n.matrix[3] != 0 || n.matrix[7] != 0 || n.matrix[11] != 0 || n.matrix[15] != 1)
+                fail(np + "/matrix", "is not affine (its last row must be 0 0 0 1)");
+            double rows[12];
+            for (int r = 0; r < 3; ++r)
+                for (int c = 0; c < 4; ++c) rows[4 * r + c] = n.matrix[size_t(4 * c + r)];
+            return Affine::rows(rows);
+        }
+        // T * R * S
+        Affine m;
+        if (n.scale.size() == 3) m = Affine::scaling(n.scale[0], n.scale[1], n.scale[2]);
+        if (n.rotation.size() == 4) {
+            double x = n.rotation[0], y = n.rotation[1], z = n.rotation[2], w = n.rotation[3];
+            const double len = std::sqrt(x * x + y * y + z * z + w * w);
+            if (!(len > 0)) fail(np + "/rotation", "is not a rotation (zero quaternion)");
+            x /= len, y /= len, z /= len, w /= len;
+            const double r[12] = {1 - 2 * (y * y + z * z), 2 * (x * y - z * w),     2 * (x * z + y * w),     0,
+                                  2 * (x * y + z * w),     1 - 2 * (x * x + z * z), 2 * (y * z - x * w),     0,
+                                  2 * (x * z - y * w),     2 * (y * z + x * w),     1 - 2 * (x * x + y * y), 0};
+            m = Affine::rows(r) * m;
+        }
+        if (n.translation.size() == 3)
+            m = Affine::translation(n.translation[0], n.translation[1], n.translation[2]) * m;
+        return m;
+    }
+
+    void traverse() {
+        std::vector<int> roots;
+        if (!model_.scenes.empty()) {
+            const int s = model_.defaultScene >= 0 && size_t(model_.defaultScene) < model_.scenes.size()
+                              ? model_.defaultScene
+                              : 0;
+            if (model_.scenes.size() > 1)
+                warn("scene " + std::to_string(s) + " of " + std::to_string(model_.scenes.size()) + " converted");
+            roots = model_.scenes[size_t(s)].nodes;
+            scene_extras_ = ours(model_.scenes[size_t(s)].extras);
+        } else {  // no scenes: every node that is nobody's child
+            std::vector<bool> child(model_.nodes.size(), false);
+            for (const tinygltf::Node& n : model_.nodes)
+                for (int c : n.children)
+                    if (c >= 0 && size_t(c) < child.size()) child[size_t(c)] = true;
+            for (size_t i = 0; i < child.size(); ++i)
+                if (!child[i]) roots.push_back(int(i));
+        }
+        visited_.assign(model_.nodes.size(), false);
+        for (int r : roots) visit(r, Affine{}, "", "/scenes/nodes");
+    }
+
+    void visit(int index, const Affine& parent, const std::string& parent_chain, const std::string& from) {
+        if (index < 0 || size_t(index) >= model_.nodes.size())
+            fail(from, "node " + std::to_string(index) + " does not exist");
+        if (visited_[size_t(index)])
+            fail(from, "node " + std::to_string(index) + " is reached twice (a cycle, or two parents)");
+        visited_[size_t(index)] = true;
+        const tinygltf::Node& n = model_.nodes[size_t(index)];
+        const std::string np = "/nodes/" + std::to_string(index);
+        const Affine local = local_matrix(n, index);
+        const Affine world = parent * local;
+        if (!(std::fabs(world.det()) > 0) || !std::isfinite(world.det())) {
+            warn(np + ": its transformation is singular or not finite: the node and its children are skipped");
+            return;
+        }
+        std::string chain = parent_chain;
+        if (!local.is_identity()) {
+            ojson c = ojson::object();
+            c["_id"] = std::to_string(transforms_.size() + 1);
+            std::string data;
+            for (int r = 0; r < 4; ++r)
+                for (int k = 0; k < 4; ++k)
+                    data += (data.empty() ? "" : " ") + course_number(r < 3 ? local.m[r][k] : (k == 3 ? 1.0 : 0.0));
+            c["_data"] = data;
+            transforms_.push_back(c);
+            chain = "c" + std::to_string(transforms_.size()) + (chain.empty() ? "" : " " + chain);
+        }
+        if (n.mesh >= 0) {
+            if (size_t(n.mesh) >= model_.meshes.size())
+                fail(np + "/mesh", "mesh " + std::to_string(n.mesh) + " does not exist");
+            add_mesh(n.mesh, world, chain);
+        }
+        if (n.camera >= 0) {
+            if (size_t(n.camera) >= model_.cameras.size())
+                fail(np + "/camera", "camera " + std::to_string(n.camera) + " does not exist");
+            camera_uses_.push_back({n.camera, index, world});
+        }
+        if (const auto it = n.extensions.find("KHR_lights_punctual"); it != n.extensions.end()) {
+            const json l = to_json(it->second);
+            if (!l.is_object() || !l.contains("light") || !l["light"].is_number_integer() ||
+                l["light"].get<int>() < 0 || size_t(l["light"].get<int>()) >= model_.lights.size())
+                fail(np + "/extensions/KHR_lights_punctual", "names no light of the file");
+            add_light(l["light"].get<int>(), world);
+        }
+        for (int c : n.children) visit(c, world, chain, np + "/children");
+    }
+
+    // ---- Meshes, spheres, planes ------------------------------------------------------
+
+    std::string material_ref(int material) {
+        if (material >= 0 && size_t(material) < model_.materials.size()) return std::to_string(material + 1);
+        needs_default_material_ = true;
+        return std::to_string(model_.materials.size() + 1);
+    }
+
+    void add_vertex(const V3& p) {
+        vertex_data_ += (vertex_data_.empty() ? "" : " ") + course_vec(p);
+        ++vertices_;
+    }
+
+    void add_mesh(int m, const Affine& world, const std::string& chain) {
+        const tinygltf::Mesh& mesh = model_.meshes[size_t(m)];
+        const json extras = ours(mesh.extras);
+        for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+            Geometry* g = geometry(m, int(p));
+            if (!g || g->indices.empty()) continue;
+            const std::string material = material_ref(mesh.primitives[p].material);
+            for (size_t i = 0; i < g->positions.size(); i += 3)
+                extent(apply(world, {g->positions[i], g->positions[i + 1], g->positions[i + 2]}, true));
+            if (mesh.primitives.size() == 1 && as_shape(*g, extras, world, chain, material)) continue;
+            ojson o = ojson::object();
+            if (options_.bake_transforms) {
+                ImportedMesh baked;
+                baked.ply_name = ply_prefix_ + "_" + std::to_string(out_.meshes.size() + 1) + ".ply";
+                for (size_t i = 0; i < g->positions.size(); i += 3) {
+                    const V3 q = apply(world, {g->positions[i], g->positions[i + 1], g->positions[i + 2]}, true);
+                    baked.positions.insert(baked.positions.end(), q.begin(), q.end());
+                }
+                baked.indices = g->indices;
+                if (world.det() < 0)  // keep the outside outside (rt/shapes/shape.h, Polygons::move)
+                    for (size_t i = 0; i < baked.indices.size(); i += 3)
+                        std::swap(baked.indices[i + 1], baked.indices[i + 2]);
+                o["_id"] = std::to_string(++object_ids_);
+                o["_shadingMode"] = g->smooth ? "smooth" : "flat";
+                o["Material"] = material;
+                o["Faces"] = {{"_plyFile", baked.ply_name}};
+                out_.meshes.push_back(std::move(baked));
+                mesh_objects_.push_back(o);
+                continue;
+            }
+            o["_id"] = std::to_string(++object_ids_);
+            if (g->base < 0) {  // its first use: the mesh itself
+                g->base = object_ids_;
+                g->ply = out_.meshes.size();
+                ImportedMesh im;
+                im.ply_name = ply_prefix_ + "_" + std::to_string(out_.meshes.size() + 1) + ".ply";
+                im.positions = g->positions;
+                im.indices = g->indices;
+                out_.meshes.push_back(std::move(im));
+                o["_shadingMode"] = g->smooth ? "smooth" : "flat";
+                o["Material"] = material;
+                if (!chain.empty()) o["Transformations"] = chain;
+                o["Faces"] = {{"_plyFile", out_.meshes[g->ply].ply_name}};
+                mesh_objects_.push_back(o);
+            } else {  // another use: an instance of the first, under its own matrix
+                o["_baseMeshId"] = std::to_string(g->base);
+                o["_resetTransform"] = "true";
+                o["Material"] = material;
+                if (!chain.empty()) o["Transformations"] = chain;
+                instance_objects_.push_back(o);
+            }
+        }
+    }
+
+    // A tessellated sphere or plane of the export, back as itself while its vertices are
+    // still on it (docs/gltf.md).
+    bool as_shape(const Geometry& g, const json& extras, const Affine& world, const std::string& chain,
+                  const std::string& material) {
+        if (!extras.is_object()) return false;
+        const size_t n = g.positions.size() / 3;
+        if (extras.contains("sphere") && n >= 4) {
+            const json& s = extras["sphere"];
+            V3 c;
+            if (!s.is_object() || !vec3(s.value("center", json()), c) || !s.value("radius", json()).is_number())
+                return false;
+            const double r = s["radius"].get<double>();
+            if (!(r > 0) || !std::isfinite(r)) return false;
+            for (size_t i = 0; i < n; ++i)
+                if (std::fabs(norm(sub({g.positions[3 * i], g.positions[3 * i + 1], g.positions[3 * i + 2]}, c)) - r) >
+                    1e-4 * r)
+                    return false;
+            ojson o = ojson::object();
+            o["_id"] = std::to_string(sphere_objects_.size() + 1);
+            o["Material"] = material;
+            add_vertex(c);
+            o["Center"] = std::to_string(vertices_);
+            o["Radius"] = course_number(r);
+            if (!chain.empty()) o["Transformations"] = chain;
+            sphere_objects_.push_back(o);
+            return true;
+        }
+        if (extras.contains("plane") && n >= 3) {
+            const json& s = extras["plane"];
+            V3 p, nrm;
+            if (!s.is_object() || !vec3(s.value("point", json()), p) || !vec3(s.value("normal", json()), nrm))
+                return false;
+            const double len = norm(nrm);
+            if (!(len > 0)) return false;
+            double size = 0;
+            for (size_t i = 0; i < n; ++i)
+                size =
+                    std::max(size, norm(sub({g.positions[3 * i], g.positions[3 * i + 1], g.positions[3 * i + 2]}, p)));
+            for (size_t i = 0; i < n; ++i) {
+                const V3 d = sub({g.positions[3 * i], g.positions[3 * i + 1], g.positions[3 * i + 2]}, p);
+                if (std::fabs(d[0] * nrm[0] + d[1] * nrm[1] + d[2] * nrm[2]) / len > 1e-5 * std::max(size, 1.0))
+                    return false;
+            }
+            ojson o = ojson::object();
+            o["_id"] = std::to_string(plane_objects_.size() + 1);
+            o["Material"] = material;
+            if (options_.bake_transforms && !world.is_identity()) {  // a moved plane is a plane
+                const Affine inv_t = world.inverse();
+                p = apply(world, p, true);
+                V3 t;  // the normal by the inverse transpose
+                for (int r = 0; r < 3; ++r)
+                    t[size_t(r)] = inv_t.m[0][r] * nrm[0] + inv_t.m[1][r] * nrm[1] + inv_t.m[2][r] * nrm[2];
+                nrm = t;
+            } else if (!chain.empty()) {
+                o["Transformations"] = chain;
+            }
+            add_vertex(p);
+            o["Point"] = std::to_string(vertices_);
+            o["Normal"] = course_vec(nrm);
+            plane_objects_.push_back(o);
+            return true;
+        }
+        return false;
+    }
+
+    void extent(const V3& p) {
+        for (size_t k = 0; k < 3; ++k) {
+            lo_[k] = std::min(lo_[k], p[k]);
+            hi_[k] = std::max(hi_[k], p[k]);
+        }
+    }
+
+    // ---- Lights, cameras, settings, materials ---------------------------------------------
+
+    void add_light(int index, const Affine& world) {
+        const tinygltf::Light& l = model_.lights[size_t(index)];
+        const std::string lp = "/extensions/KHR_lights_punctual/lights/" + std::to_string(index);
+        if (l.type != "point") {
+            warn(lp + ": a " + l.type + " light: only point lights are in the format; skipped");
+            return;
+        }
+        V3 colour{1, 1, 1};
+        if (l.color.size() == 3) colour = {l.color[0], l.color[1], l.color[2]};
+        V3 intensity;
+        for (size_t k = 0; k < 3; ++k) intensity[k] = colour[k] * l.intensity * options_.light_scale;
+        // The export's exact intensity, while the light still gives it.
+        const json extras = ours(l.extras);
+        V3 exact;
+        if (extras.is_object() && vec3(extras.value("intensity", json()), exact)) {
+            bool same = true;
+            const double peak = std::max({exact[0], exact[1], exact[2], 1e-300});
+            for (size_t k = 0; k < 3; ++k) same = same && std::fabs(exact[k] - intensity[k]) <= 1e-4 * peak;
+            if (same) intensity = exact;
+        }
+        if (l.range > 0) warn(lp + ": its range is not in the format: the light reaches everywhere");
+        ojson o = ojson::object();
+        o["_id"] = std::to_string(lights_.size() + 1);
+        o["Position"] = course_vec(apply(world, {0, 0, 0}, true));
+        o["Intensity"] = course_vec(intensity);
+        lights_.push_back(o);
+        extent(apply(world, {0, 0, 0}, true));
+    }
+
+    bool bounds_empty() const { return !(lo_[0] <= hi_[0]); }
+
+    ModelFrame frame(int width, int height, const std::string& image) const {
+        return bounds_empty() ? frame_model({-1, -1, -1}, {1, 1, 1}, width, height, image)
+                              : frame_model(lo_, hi_, width, height, image);
+    }
+
+    std::string image_name(size_t k, size_t count) const {
+        if (!options_.image_name.empty() && count == 1) return options_.image_name;
+        return image_stem_ + (count == 1 ? "" : "_" + std::to_string(k)) + ".png";
+    }
+
+    ojson cameras() {
+        // The first node of each camera, in the order of the file's cameras.
+        std::map<int, const CameraUse*> first;
+        for (const CameraUse& u : camera_uses_) first.emplace(u.camera, &u);
+        for (size_t i = 0; i < model_.cameras.size(); ++i)
+            if (!first.count(int(i))) warn("/cameras/" + std::to_string(i) + ": no node places it: skipped");
+        std::vector<const CameraUse*> chosen;
+        if (options_.camera == 0) {
+            for (const auto& [c, u] : first) chosen.push_back(u);
+        } else if (!model_.cameras.empty()) {
+            const int c = options_.camera - 1;
+            if (size_t(c) >= model_.cameras.size())
+                fail("/cameras", "--camera " + std::to_string(options_.camera) + ": the file has " +
+                                     std::to_string(model_.cameras.size()) + " camera" +
+                                     (model_.cameras.size() == 1 ? "" : "s"));
+            if (!first.count(c)) fail("/cameras/" + std::to_string(c), "no node places this camera");
+            chosen.push_back(first[c]);
+        }
+        ojson list = ojson::array();
+        for (const CameraUse* u : chosen) {
+            ojson cam = camera(*u, chosen.size());
+            if (!cam.is_null()) list.push_back(cam);
+        }
+        if (list.empty()) {
+            if (!model_.cameras.empty()) warn("no perspective camera: a camera framing the model is used");
+            ojson cam = frame(options_.width, options_.height, image_name(1, 1)).camera;
+            out_.notes.push_back("camera: framing the model (the file has none)");
+            list.push_back(cam);
+        }
+        for (size_t i = 0; i < list.size(); ++i) list[i]["_id"] = std::to_string(i + 1);
+        return list;
+    }
+
+    ojson camera(const CameraUse& u, size_t count) {
+        const tinygltf::Camera& c = model_.cameras[size_t(u.camera)];
+        const std::string cp = "/cameras/" + std::to_string(u.camera);
+        if (c.type != "perspective") {
+            warn(cp + ": a " + c.type + " camera: only perspective cameras are in the format; skipped");
+            return nullptr;
+        }
+        const double yfov = c.perspective.yfov;
+        if (!(yfov > 0 && yfov < pi_v<double>)) fail(cp + "/perspective/yfov", "must be between 0 and pi");
+        V3 pos = apply(u.world, {0, 0, 0}, true), gaze = apply(u.world, {0, 0, -1}, false),
+           up = apply(u.world, {0, 1, 0}, false);
+        const double gl = norm(gaze), ul = norm(up);
+        for (size_t k = 0; k < 3; ++k) gaze[k] /= gl, up[k] /= ul;
+        int width = options_.width, height = options_.height;
+        const double aspect = c.perspective.aspectRatio;
+        if (!options_.size_given && aspect > 0) {
+            height = 600;
+            width = std::max(1, int(std::lround(600 * aspect)));
+        } else if (options_.size_given && aspect > 0 && std::fabs(aspect - double(width) / height) > 1e-3 * aspect) {
+            warn(cp + ": aspect ratio " + course_number(aspect) +
+                 " differs from --size: the vertical field of view is kept");
+        }
+        const double top = std::tan(yfov / 2), right = top * double(width) / double(height);
+        std::string name = image_name(size_t(u.camera) + 1, count);
+        std::array<double, 4> plane{-right, right, -top, top};
+        double distance = 1;
+        // The export's exact camera, while the node still places it there.
+        const json extras = ours(model_.nodes[size_t(u.node)].extras);
+        const json e = extras.is_object() ? extras.value("camera", json()) : json();
+        V3 ep, eg, eu;
+        if (e.is_object() && vec3(e.value("position", json()), ep) && vec3(e.value("gaze", json()), eg) &&
+            vec3(e.value("up", json()), eu) && e.value("nearPlane", json()).is_array() && e["nearPlane"].size() == 4 &&
+            e.value("nearDistance", json()).is_number() && e.value("imageResolution", json()).is_array() &&
+            e["imageResolution"].size() == 2 && e.value("imageName", json()).is_string()) {
+            const double scale = std::max(1.0, norm(ep));
+            const double eg_len = norm(eg), eu_len = norm(eu);
+            const double cos_g = (eg[0] * gaze[0] + eg[1] * gaze[1] + eg[2] * gaze[2]) / eg_len;
+            const double ed = e["nearDistance"].get<double>();
+            const double etop = e["nearPlane"][3].get<double>(), ebottom = e["nearPlane"][2].get<double>();
+            const double eyfov = std::atan(etop / ed) - std::atan(ebottom / ed);
+            // The up vector only has to lie in the same half-plane about the gaze.
+            const double cos_u = (eu[0] * up[0] + eu[1] * up[1] + eu[2] * up[2]) / eu_len;
+            if (norm(sub(ep, pos)) <= 1e-5 * scale && cos_g > 1 - 1e-8 && cos_u > 0 &&
+                std::fabs(eyfov - yfov) <= 1e-5 * yfov && !options_.size_given) {
+                pos = ep, gaze = eg, up = eu;
+                for (size_t k = 0; k < 4; ++k) plane[k] = e["nearPlane"][k].get<double>();
+                distance = ed;
+                width = e["imageResolution"][0].get<int>();
+                height = e["imageResolution"][1].get<int>();
+                if (options_.image_name.empty()) name = e["imageName"].get<std::string>();
+            }
+        }
+        extent(pos);
+        ojson o = ojson::object();
+        o["_id"] = "0";
+        o["Position"] = course_vec(pos);
+        o["Gaze"] = course_vec(gaze);
+        o["Up"] = course_vec(up);
+        o["NearPlane"] = course_number(plane[0]) + " " + course_number(plane[1]) + " " + course_number(plane[2]) + " " +
+                         course_number(plane[3]);
+        o["NearDistance"] = course_number(distance);
+        o["ImageResolution"] = std::to_string(width) + " " + std::to_string(height);
+        o["ImageName"] = name;
+        out_.notes.push_back("camera " + std::to_string(u.camera + 1) + " (" + (c.name.empty() ? "unnamed" : c.name) +
+                             ") -> " + std::to_string(width) + "x" + std::to_string(height) + " " + name);
+        return o;
+    }
+
+    ojson lights() {
+        ojson l = ojson::object();
+        V3 ambient{0, 0, 0};
+        const bool have_ambient =
+            scene_extras_.is_object() && vec3(scene_extras_.value("ambientLight", json()), ambient);
+        if (lights_.empty()) {
+            l = frame(options_.width, options_.height, "").lights;
+            if (have_ambient) l["AmbientLight"] = course_vec(ambient);
+            out_.notes.push_back("lights: the default lights (the file has no point light)");
+            return l;
+        }
+        l["AmbientLight"] = course_vec(ambient);
+        l["PointLight"] = lights_;
+        return l;
+    }
+
+    void scene_settings(ojson& scene) {
+        const json& e = scene_extras_;
+        V3 background{40, 44, 56};
+        if (e.is_object()) vec3(e.value("backgroundColor", json()), background);
+        scene["BackgroundColor"] = course_vec(background);
+        const double radius = bounds_empty() ? 1.0 : frame(1, 1, "").radius;
+        double shadow = 1e-4 * radius;
+        if (e.is_object() && e.value("shadowRayEpsilon", json()).is_number())
+            shadow = e["shadowRayEpsilon"].get<double>();
+        scene["ShadowRayEpsilon"] = course_number(shadow);
+        if (e.is_object() && e.value("intersectionTestEpsilon", json()).is_number())
+            scene["IntersectionTestEpsilon"] = course_number(e["intersectionTestEpsilon"].get<double>());
+        int depth = 6;
+        if (e.is_object() && e.value("maxRecursionDepth", json()).is_number_integer())
+            depth = e["maxRecursionDepth"].get<int>();
+        scene["MaxRecursionDepth"] = std::to_string(depth);
+    }
+
+    PbrMaterial pbr(const tinygltf::Material& m, const std::string& mp) {
+        PbrMaterial p;
+        const auto& pbr = m.pbrMetallicRoughness;
+        for (size_t k = 0; k < 3 && k < pbr.baseColorFactor.size(); ++k) p.base[k] = pbr.baseColorFactor[k];
+        p.metallic = pbr.metallicFactor;
+        p.roughness = pbr.roughnessFactor;
+        auto ext = [&](const char* name) {
+            const auto it = m.extensions.find(name);
+            return it == m.extensions.end() ? json() : to_json(it->second);
+        };
+        const json t = ext("KHR_materials_transmission"), i = ext("KHR_materials_ior"), v = ext("KHR_materials_volume");
+        if (t.is_object()) p.transmission = t.value("transmissionFactor", 0.0);
+        if (i.is_object()) p.ior = i.value("ior", 1.5);
+        if (v.is_object()) {
+            p.attenuation_distance = v.value("attenuationDistance", HUGE_VAL);
+            V3 a;
+            if (vec3(v.value("attenuationColor", json()), a)) std::copy(a.begin(), a.end(), p.attenuation);
+        }
+        std::vector<std::string> textures;
+        if (pbr.baseColorTexture.index >= 0) textures.push_back("base colour");
+        if (pbr.metallicRoughnessTexture.index >= 0) textures.push_back("metallic-roughness");
+        if (m.normalTexture.index >= 0) textures.push_back("normal");
+        if (m.emissiveTexture.index >= 0) textures.push_back("emissive");
+        if (m.occlusionTexture.index >= 0) textures.push_back("occlusion");
+        if (!textures.empty()) {
+            std::string list;
+            for (const std::string& s : textures) list += (list.empty() ? "" : ", ") + s;
+            warn(mp + ": textures are not in the format (" + list + "): its factors are used");
+        }
+        if (m.emissiveFactor.size() == 3 &&
+            (m.emissiveFactor[0] > 0 || m.emissiveFactor[1] > 0 || m.emissiveFactor[2] > 0))
+            warn(mp + ": emission is not in the format: left out");
+        if (m.alphaMode == "BLEND" || (pbr.baseColorFactor.size() == 4 && pbr.baseColorFactor[3] < 1))
+            warn(mp + ": alpha is not in the format (glass is KHR_materials_transmission): opaque");
+        return p;
+    }
+
+    ojson materials() {
+        ojson list = ojson::array();
+        for (size_t i = 0; i < model_.materials.size(); ++i) {
+            const tinygltf::Material& m = model_.materials[i];
+            const std::string mp = "/materials/" + std::to_string(i);
+            const PbrMaterial p = pbr(m, mp);
+            MaterialDesc exact;
+            const bool from_extras = material_from_extras(ours(m.extras), exact) && same_pbr(pbr_of(exact), p);
+            const MaterialDesc d = from_extras ? exact : material_of(p);
+            list.push_back(material_entry(d, i + 1));
+            out_.notes.push_back("material " + std::to_string(i + 1) + " (" + (m.name.empty() ? "unnamed" : m.name) +
+                                 "): " + material_type_name(d.type) +
+                                 (from_extras ? ", the exported course values" : ", from its PBR values"));
+        }
+        if (needs_default_material_) {
+            list.push_back(default_material(model_.materials.size() + 1));
+            out_.notes.push_back("material " + std::to_string(model_.materials.size() + 1) +
+                                 ": default grey, for primitives without a material");
+        }
+        return list;
+    }
+
+    const std::string& path_;
+    const tinygltf::Model& model_;
+    const ConvertOptions& options_;
+    const std::string ply_prefix_, image_stem_;
+    SceneImport& out_;
+
+    std::map<std::pair<int, int>, Geometry> geometries_;
+    std::set<std::string> skipped_;
+    std::vector<bool> visited_;
+    std::vector<CameraUse> camera_uses_;
+    json scene_extras_;
+    ojson transforms_ = ojson::array(), mesh_objects_ = ojson::array(), instance_objects_ = ojson::array(),
+          sphere_objects_ = ojson::array(), plane_objects_ = ojson::array(), lights_ = ojson::array();
+    std::string vertex_data_;
+    size_t vertices_ = 0;
+    int object_ids_ = 0;  // Mesh and MeshInstance share one id space
+    bool needs_default_material_ = false;
+    V3 lo_{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi_{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+};
+
+}  // namespace
+
+SceneImport import_gltf(const std::string& path, const ConvertOptions& options, const std::string& ply_prefix) {
+    SceneImport out;
+    tinygltf::Model model;
+    load_gltf(path, model, out.warnings);
+    Importer(path, model, options, ply_prefix, ply_prefix, out).run();
+    return out;
+}
+#else
+SceneImport import_gltf(const std::string& path, const ConvertOptions&, const std::string&) {
+    throw InputError(path + ": glTF is not supported by this build (it was made without tinygltf, libtinygltf-dev)");
+}
+#endif  // RT_NO_GLTF
+
+}  // namespace rt
