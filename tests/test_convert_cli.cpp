@@ -40,6 +40,8 @@ TEST(ConvertCli, BadInputIsOneLineAndWritesNothing) {
     write_text(tmp / "huge.json", "{\"Scene\": 1e999}");
     write_text(tmp / "ok.json", "{\"Scene\": {}}");
     write_text(tmp / "bad.obj", "v 0 0 0\nf 1 2 3\n");
+    // A GLB header (magic, version 2, length 1000) and four bytes of the 988 it promises.
+    write_text(tmp / "cut.glb", std::string("glTF\x02\0\0\0\xe8\x03\0\0JSON", 16));
     struct Case {
         std::vector<std::string> args;
         std::string error;
@@ -52,7 +54,10 @@ TEST(ConvertCli, BadInputIsOneLineAndWritesNothing) {
              {{"bad.obj", "out.json"},
               "bad.obj: line 2: vertex index out of range in 'f 1 2 3' (the file has 1 vertices)"},
              {{"missing.xml", "out.json"}, "missing.xml: cannot open: No such file or directory"},
-             {{"ok.json", "out.txt"}, "out.txt: unknown output format (the name must end in .json, .xml or .obj)"},
+             {{"cut.glb", "out.json"}, "cut.glb: truncated: its GLB header says 1000 bytes, the file has 16"},
+             {{"ok.json", "out.gltf"}, "ok.json: /Scene/Cameras: required key is missing"},
+             {{"ok.json", "out.txt"},
+              "out.txt: unknown output format (the name must end in .json, .xml, .obj, .gltf or .glb)"},
              {{"ok.json", "ok.json"}, "ok.json: is the input file; choose another output name"},
              {{"ok.json", "no/such/dir/out.xml"}, "no/such/dir/out.xml: cannot write: No such file or directory"},
          }) {
@@ -62,8 +67,8 @@ TEST(ConvertCli, BadInputIsOneLineAndWritesNothing) {
         const std::vector<std::string> lines = split_lines(r.err);
         ASSERT_EQ(lines.size(), 1u) << r.err;
         EXPECT_EQ(lines[0].substr(0, c.error.size() + 7), "error: " + c.error);
-        EXPECT_EQ(list_files(tmp.path()),
-                  (std::vector<std::string>{"bad.obj", "broken.json", "broken.xml", "huge.json", "ok.json"}));
+        EXPECT_EQ(list_files(tmp.path()), (std::vector<std::string>{"bad.obj", "broken.json", "broken.xml", "cut.glb",
+                                                                    "huge.json", "ok.json"}));
     }
 }
 

@@ -18,8 +18,8 @@
 #include <map>
 
 #include "gltf_io.h"
-#include "gltf_materials.h"
 #include "rt/convert/convert.h"
+#include "rt/convert/gltf_materials.h"
 #include "rt/core/error.h"
 #include "rt/loader/scene_desc.h"
 #include "scene_import.h"
@@ -102,8 +102,10 @@ std::vector<float> vertex_normals(const std::vector<Vec3>& p, const std::vector<
     return out;
 }
 
+// `exact`: positions a float cannot hold go into the extras as doubles (not needed for
+// a tessellation, which the import replaces by its sphere or plane).
 Geometry add_geometry(BufferWriter& buffers, const std::vector<Vec3>& positions, const std::vector<uint32_t>& indices,
-                      bool smooth) {
+                      bool smooth, bool keep_exact) {
     Geometry g;
     std::vector<float> p;
     p.reserve(3 * positions.size());
@@ -116,7 +118,7 @@ Geometry add_geometry(BufferWriter& buffers, const std::vector<Vec3>& positions,
     g.positions = buffers.floats(p, 3, true);
     g.indices = buffers.indices(indices);
     if (smooth) g.normals = buffers.floats(vertex_normals(positions, indices), 3, false);
-    if (!exact) {  // positions a float cannot hold: their doubles
+    if (!exact && keep_exact) {  // positions a float cannot hold: their doubles
         json exact_positions = json::array();
         for (const Vec3& v : positions)
             for (int k = 0; k < 3; ++k) exact_positions.push_back(double(v[k]));
@@ -259,7 +261,8 @@ private:
     void add_meshes() {
         for (size_t i = 0; i < scene_.meshes.size(); ++i) {
             const MeshDesc& m = scene_.meshes[i];
-            geometries_.push_back(add_geometry(buffers_, m.positions, m.indices, m.shading == ShadingMode::Smooth));
+            geometries_.push_back(
+                add_geometry(buffers_, m.positions, m.indices, m.shading == ShadingMode::Smooth, true));
             const std::string name = std::string(m.triangle_object ? "Triangle " : "Mesh ") + m.id;
             if (!m.instanced) add_node(name, mesh_of(i, m.material, name), Affine{});
         }
@@ -278,14 +281,14 @@ private:
             SphereDesc local = d;
             local.transform = Affine{};
             const Polygons poly = Sphere::polygons(local, frame);
-            geometries_.push_back(add_geometry(buffers_, poly.vertices, triangles_of(poly), true));
+            geometries_.push_back(add_geometry(buffers_, poly.vertices, triangles_of(poly), true, false));
             geometries_.back().extras["sphere"] = {{"center", arr(d.center)}, {"radius", double(d.radius)}};
             const std::string name = "Sphere " + d.id;
             add_node(name, mesh_of(geometries_.size() - 1, d.material, name), d.transform);
         }
         for (const PlaneDesc& d : scene_.all<Plane>()) {
             const Polygons poly = Plane::polygons(d, frame);
-            geometries_.push_back(add_geometry(buffers_, poly.vertices, triangles_of(poly), false));
+            geometries_.push_back(add_geometry(buffers_, poly.vertices, triangles_of(poly), false, false));
             geometries_.back().extras["plane"] = {{"point", arr(d.point)}, {"normal", arr(d.normal)}};
             const std::string name = "Plane " + d.id;
             add_node(name, mesh_of(geometries_.size() - 1, d.material, name), Affine{});

@@ -18,7 +18,7 @@
 #include <set>
 
 #include "gltf_io.h"
-#include "gltf_materials.h"
+#include "rt/convert/gltf_materials.h"
 #include "rt/core/affine.h"
 #include "rt/core/error.h"
 #include "scene_import.h"
@@ -203,6 +203,26 @@ private:
         return out;
     }
 
+    // Whether every corner's normal is its triangle's own: a flat-shaded mesh as modelling
+    // tools write it (vertices split where faces meet), drawn flat (docs/gltf.md).
+    static bool flat_normals(const Geometry& g, const std::vector<double>& normals) {
+        if (normals.size() != g.positions.size()) return false;
+        auto at = [](const std::vector<double>& v, uint32_t i) { return V3{v[3 * i], v[3 * i + 1], v[3 * i + 2]}; };
+        for (size_t t = 0; t + 2 < g.indices.size(); t += 3) {
+            const V3 a = at(g.positions, g.indices[t]), e1 = sub(at(g.positions, g.indices[t + 1]), a),
+                     e2 = sub(at(g.positions, g.indices[t + 2]), a);
+            const V3 n{e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+            const double len = norm(n);
+            if (!(len > 0)) continue;  // degenerate: no normal of its own
+            for (size_t k = 0; k < 3; ++k) {
+                const V3 c = at(normals, g.indices[t + k]);
+                const double cl = norm(c);
+                if (!(cl > 0) || (c[0] * n[0] + c[1] * n[1] + c[2] * n[2]) / (cl * len) < 1 - 1e-6) return false;
+            }
+        }
+        return true;
+    }
+
     // The geometry of primitive p of mesh m, read once per accessor pair; nullptr for a
     // primitive that is skipped (with a warning).
     Geometry* geometry(int m, int p) {
@@ -235,7 +255,8 @@ private:
                  std::to_string(g.indices.size() % 3) + " left out");
             g.indices.resize(g.indices.size() - g.indices.size() % 3);
         }
-        g.smooth = prim.attributes.count("NORMAL") > 0;
+        if (const auto nrm = prim.attributes.find("NORMAL"); nrm != prim.attributes.end())
+            g.smooth = !flat_normals(g, positions(nrm->second, where + "/attributes/NORMAL"));
         // Positions a float could not hold, kept by the export: used while they round to these.
         const json extras = ours(model_.meshes[size_t(m)].extras);
         if (extras.is_object() && extras.contains("positions")) {
@@ -299,10 +320,13 @@ private:
                 if (!child[i]) roots.push_back(int(i));
         }
         visited_.assign(model_.nodes.size(), false);
-        for (int r : roots) visit(r, Affine{}, "", "/scenes/nodes");
+        locals_.assign(model_.nodes.size(), Affine{});
+        for (int r : roots) visit(r, Affine{}, {}, "/scenes/nodes");
     }
 
-    void visit(int index, const Affine& parent, const std::string& parent_chain, const std::string& from) {
+    // `chain`: the nodes above (and with) this one whose matrices are not the identity,
+    // innermost first, the order in which the course applies a Transformations list.
+    void visit(int index, const Affine& parent, std::vector<int> chain, const std::string& from) {
         if (index < 0 || size_t(index) >= model_.nodes.size())
             fail(from, "node " + std::to_string(index) + " does not exist");
         if (visited_[size_t(index)])
@@ -310,24 +334,13 @@ private:
         visited_[size_t(index)] = true;
         const tinygltf::Node& n = model_.nodes[size_t(index)];
         const std::string np = "/nodes/" + std::to_string(index);
-        const Affine local = local_matrix(n, index);
-        const Affine world = parent * local;
+        locals_[size_t(index)] = local_matrix(n, index);
+        const Affine world = parent * locals_[size_t(index)];
         if (!(std::fabs(world.det()) > 0) || !std::isfinite(world.det())) {
             warn(np + ": its transformation is singular or not finite: the node and its children are skipped");
             return;
         }
-        std::string chain = parent_chain;
-        if (!local.is_identity()) {
-            ojson c = ojson::object();
-            c["_id"] = std::to_string(transforms_.size() + 1);
-            std::string data;
-            for (int r = 0; r < 4; ++r)
-                for (int k = 0; k < 4; ++k)
-                    data += (data.empty() ? "" : " ") + course_number(r < 3 ? local.m[r][k] : (k == 3 ? 1.0 : 0.0));
-            c["_data"] = data;
-            transforms_.push_back(c);
-            chain = "c" + std::to_string(transforms_.size()) + (chain.empty() ? "" : " " + chain);
-        }
+        if (!locals_[size_t(index)].is_identity()) chain.insert(chain.begin(), index);
         if (n.mesh >= 0) {
             if (size_t(n.mesh) >= model_.meshes.size())
                 fail(np + "/mesh", "mesh " + std::to_string(n.mesh) + " does not exist");
@@ -348,6 +361,28 @@ private:
         for (int c : n.children) visit(c, world, chain, np + "/children");
     }
 
+    // The Transformations list of a chain of nodes: one Composite per node, its local
+    // matrix, made when an object first uses it.
+    std::string transformations(const std::vector<int>& chain) {
+        std::string list;
+        for (int node : chain) {
+            auto [it, fresh] = composite_of_.emplace(node, transforms_.size() + 1);
+            if (fresh) {
+                const Affine& m = locals_[size_t(node)];
+                std::string data;
+                for (int r = 0; r < 4; ++r)
+                    for (int k = 0; k < 4; ++k)
+                        data += (data.empty() ? "" : " ") + course_number(r < 3 ? m.m[r][k] : (k == 3 ? 1.0 : 0.0));
+                ojson c = ojson::object();
+                c["_id"] = std::to_string(it->second);
+                c["_data"] = data;
+                transforms_.push_back(c);
+            }
+            list += (list.empty() ? "c" : " c") + std::to_string(it->second);
+        }
+        return list;
+    }
+
     // ---- Meshes, spheres, planes ------------------------------------------------------
 
     std::string material_ref(int material) {
@@ -361,7 +396,7 @@ private:
         ++vertices_;
     }
 
-    void add_mesh(int m, const Affine& world, const std::string& chain) {
+    void add_mesh(int m, const Affine& world, const std::vector<int>& nodes) {
         const tinygltf::Mesh& mesh = model_.meshes[size_t(m)];
         const json extras = ours(mesh.extras);
         for (size_t p = 0; p < mesh.primitives.size(); ++p) {
@@ -370,7 +405,7 @@ private:
             const std::string material = material_ref(mesh.primitives[p].material);
             for (size_t i = 0; i < g->positions.size(); i += 3)
                 extent(apply(world, {g->positions[i], g->positions[i + 1], g->positions[i + 2]}, true));
-            if (mesh.primitives.size() == 1 && as_shape(*g, extras, world, chain, material)) continue;
+            if (mesh.primitives.size() == 1 && as_shape(*g, extras, world, nodes, material)) continue;
             ojson o = ojson::object();
             if (options_.bake_transforms) {
                 ImportedMesh baked;
@@ -391,6 +426,7 @@ private:
                 mesh_objects_.push_back(o);
                 continue;
             }
+            const std::string chain = transformations(nodes);
             o["_id"] = std::to_string(++object_ids_);
             if (g->base < 0) {  // its first use: the mesh itself
                 g->base = object_ids_;
@@ -417,7 +453,7 @@ private:
 
     // A tessellated sphere or plane of the export, back as itself while its vertices are
     // still on it (docs/gltf.md).
-    bool as_shape(const Geometry& g, const json& extras, const Affine& world, const std::string& chain,
+    bool as_shape(const Geometry& g, const json& extras, const Affine& world, const std::vector<int>& nodes,
                   const std::string& material) {
         if (!extras.is_object()) return false;
         const size_t n = g.positions.size() / 3;
@@ -438,7 +474,7 @@ private:
             add_vertex(c);
             o["Center"] = std::to_string(vertices_);
             o["Radius"] = course_number(r);
-            if (!chain.empty()) o["Transformations"] = chain;
+            if (!nodes.empty()) o["Transformations"] = transformations(nodes);
             sphere_objects_.push_back(o);
             return true;
         }
@@ -468,8 +504,8 @@ private:
                 for (int r = 0; r < 3; ++r)
                     t[size_t(r)] = inv_t.m[0][r] * nrm[0] + inv_t.m[1][r] * nrm[1] + inv_t.m[2][r] * nrm[2];
                 nrm = t;
-            } else if (!chain.empty()) {
-                o["Transformations"] = chain;
+            } else if (!nodes.empty()) {
+                o["Transformations"] = transformations(nodes);
             }
             add_vertex(p);
             o["Point"] = std::to_string(vertices_);
@@ -733,6 +769,8 @@ private:
     std::map<std::pair<int, int>, Geometry> geometries_;
     std::set<std::string> skipped_;
     std::vector<bool> visited_;
+    std::vector<Affine> locals_;          // each node's own matrix
+    std::map<int, size_t> composite_of_;  // node -> its Composite's _id
     std::vector<CameraUse> camera_uses_;
     json scene_extras_;
     ojson transforms_ = ojson::array(), mesh_objects_ = ojson::array(), instance_objects_ = ojson::array(),

@@ -16,6 +16,7 @@
 #pragma GCC diagnostic pop
 #endif
 
+#include <cstring>
 #include <filesystem>
 #include <regex>
 #include <sstream>
@@ -52,11 +53,32 @@ void load_gltf(const std::string& path, tinygltf::Model& model, std::vector<std:
     const std::string dir = dirname_of(path);
     const std::string base = dir.empty() ? "." : dir;
     const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
+    if (binary && bytes.size() >= 12) {  // the GLB header: magic, version, total length
+        uint32_t length;
+        std::memcpy(&length, bytes.data() + 8, 4);
+        if (length > bytes.size())
+            throw InputError(path + ": truncated: its GLB header says " + std::to_string(length) +
+                             " bytes, the file has " + std::to_string(bytes.size()));
+    }
     const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
     const bool ok = binary ? gltf.LoadBinaryFromMemory(&model, &err, &warn, data, unsigned(bytes.size()), base)
                            : gltf.LoadASCIIFromString(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), base);
-    if (!ok || !err.empty())
-        throw InputError(path + ": " + (err.empty() ? std::string("not a glTF file") : first_line(err)));
+    if (!ok || !err.empty()) {
+        std::string what = err.empty() ? std::string("not a glTF file") : first_line(err);
+        // "File not found : x.bin": which buffer or image names it.
+        static const std::string kNotFound = "File not found : ";
+        if (!binary && what.rfind(kNotFound, 0) == 0) {
+            const std::string file = what.substr(kNotFound.size());
+            const nlohmann::json j = nlohmann::json::parse(bytes, nullptr, false);
+            for (const char* kind : {"buffers", "images"})
+                if (j.is_object() && j.contains(kind) && j[kind].is_array())
+                    for (size_t i = 0; i < j[kind].size(); ++i)
+                        if (j[kind][i].is_object() && j[kind][i].value("uri", "") == file)
+                            what = std::string("/") + kind + "/" + std::to_string(i) + ": its file " + file +
+                                   " is missing (looked in " + base + ")";
+        }
+        throw InputError(path + ": " + what);
+    }
     std::istringstream lines(warn);
     for (std::string line; std::getline(lines, line);)
         if (!line.empty()) warnings.push_back(path + ": " + first_line(line));
@@ -65,21 +87,31 @@ void load_gltf(const std::string& path, tinygltf::Model& model, std::vector<std:
 std::vector<std::string> save_gltf(tinygltf::Model& model, const std::string& path) {
     const bool binary = lower_extension(path) == ".glb";
     std::vector<std::string> written{path};
-    std::string bin_path;
-    if (!binary && !model.buffers.empty()) {
-        namespace fs = std::filesystem;
-        const fs::path p(path);
-        model.buffers[0].uri = p.stem().string() + ".bin";
-        bin_path = (p.parent_path() / model.buffers[0].uri).string();
-        const std::vector<unsigned char>& data = model.buffers[0].data;
-        write_file_atomic(bin_path, std::string_view(reinterpret_cast<const char*>(data.data()), data.size()));
-        written.push_back(bin_path);
-    }
     std::ostringstream out;
     tinygltf::TinyGLTF gltf;
-    if (!gltf.WriteGltfSceneToStream(&model, out, /*prettyPrint=*/true, binary))
-        throw InputError(path + ": cannot write the glTF");
-    write_file_atomic(path, out.str());
+    if (binary || model.buffers.empty()) {
+        if (!gltf.WriteGltfSceneToStream(&model, out, /*prettyPrint=*/true, binary))
+            throw InputError(path + ": cannot write the glTF");
+        write_file_atomic(path, out.str());
+        return written;
+    }
+    // .gltf: tinygltf's stream writer embeds buffers as data URIs; buffer 0 goes beside
+    // the file instead, as <stem>.bin, and the JSON names it.
+    namespace fs = std::filesystem;
+    const std::string bin_name = fs::path(path).stem().string() + ".bin";
+    const std::string bin_path = (fs::path(path).parent_path() / bin_name).string();
+    std::vector<unsigned char> data = std::move(model.buffers[0].data);
+    model.buffers[0].data.clear();
+    const bool ok = gltf.WriteGltfSceneToStream(&model, out, /*prettyPrint=*/true, false);
+    model.buffers[0].data = std::move(data);
+    if (!ok) throw InputError(path + ": cannot write the glTF");
+    nlohmann::ordered_json j = nlohmann::ordered_json::parse(out.str());
+    j["buffers"][0]["uri"] = bin_name;
+    j["buffers"][0]["byteLength"] = model.buffers[0].data.size();
+    const std::vector<unsigned char>& bytes = model.buffers[0].data;
+    write_file_atomic(bin_path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+    write_file_atomic(path, j.dump(2) + "\n");
+    written.push_back(bin_path);
     return written;
 }
 

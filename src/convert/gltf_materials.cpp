@@ -1,5 +1,5 @@
 // The table between the course's materials and glTF's (gltf_materials.h, docs/gltf.md).
-#include "gltf_materials.h"
+#include "rt/convert/gltf_materials.h"
 
 #include <algorithm>
 #include <array>

@@ -23,37 +23,10 @@ import tempfile
 import threading
 import time
 
-REPO = os.path.dirname(os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+from shared_scenes import REPO, RAYTRACER, RTDIFF, check, complete_scenes, failures, identical, shared_dir  # noqa: E402
+
 WEB = os.environ.get("RT_WEB_DIR") or os.path.join(REPO, "build", "web")  # another build: RT_WEB_DIR
-RAYTRACER = os.path.join(REPO, "raytracer")
-RTDIFF = os.path.join(REPO, "rtdiff")
-failures = []
-
-
-def check(ok, what):
-    print(("ok    " if ok else "FAIL  ") + what, flush=True)
-    if not ok:
-        failures.append(what)
-    return ok
-
-
-def shared_dir():
-    d = os.environ.get("RT_SHARED_DIR") or os.path.join(os.path.dirname(REPO), "shared")
-    return d if os.path.isdir(os.path.join(d, "scenes")) else ""
-
-
-def complete_scenes(shared):
-    """(assignment, path relative to its scene folder) of every complete scene."""
-    out = []
-    for hw in ("hw1", "hw2"):
-        with open(os.path.join(shared, "scenes", hw, "MANIFEST.tsv"), encoding="utf-8") as f:
-            for line in f:
-                cols = line.rstrip("\n").split("\t")
-                # A scene of several cameras has a line per image: rendered once.
-                if not line.startswith("#") and len(cols) >= 4 and cols[3].startswith("complete") and \
-                        (hw, cols[0]) not in out:
-                    out.append((hw, cols[0]))
-    return out
 
 
 def write_ppm(path, width, height, rgba):
@@ -61,12 +34,6 @@ def write_ppm(path, width, height, rgba):
     rgb[0::3], rgb[1::3], rgb[2::3] = rgba[0::4], rgba[1::4], rgba[2::4]
     with open(path, "wb") as f:
         f.write(b"P6\n%d %d\n255\n" % (width, height) + bytes(rgb))
-
-
-def identical(a, b):
-    """rtdiff at tolerance 0: no channel of any pixel differs."""
-    r = subprocess.run([RTDIFF, "--tolerance", "0", "--fail-above", "0", a, b], capture_output=True, text=True)
-    return r.returncode == 0, (r.stdout + r.stderr).strip().splitlines()[-1:] or [""]
 
 
 _native = {}  # scene -> its images, rendered once for the Node and the page checks

@@ -1,4 +1,4 @@
-// Internal: the one table between the course's materials and glTF's physically based
+// The one table between the course's materials and glTF's physically based
 // ones (pbrMetallicRoughness, KHR_materials_transmission, _ior, _volume), used by the
 // export (MaterialDesc -> glTF) and the import (glTF -> MaterialDesc). docs/gltf.md
 // gives the table and its reasons.

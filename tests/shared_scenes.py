@@ -1,0 +1,41 @@
+"""What the Python checks (tests/web/check_web.py, tests/gltf/check_gltf.py) share: the
+course's scenes in ../shared (RT_SHARED_DIR), and a check that prints and counts."""
+import os
+import subprocess
+
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+RAYTRACER = os.path.join(REPO, "raytracer")
+RTDIFF = os.path.join(REPO, "rtdiff")
+failures = []
+
+
+def check(ok, what):
+    print(("ok    " if ok else "FAIL  ") + what, flush=True)
+    if not ok:
+        failures.append(what)
+    return ok
+
+
+def shared_dir():
+    d = os.environ.get("RT_SHARED_DIR") or os.path.join(os.path.dirname(REPO), "shared")
+    return d if os.path.isdir(os.path.join(d, "scenes")) else ""
+
+
+def complete_scenes(shared):
+    """(assignment, path relative to its scene folder) of every complete scene."""
+    out = []
+    for hw in ("hw1", "hw2"):
+        with open(os.path.join(shared, "scenes", hw, "MANIFEST.tsv"), encoding="utf-8") as f:
+            for line in f:
+                cols = line.rstrip("\n").split("\t")
+                # A scene of several cameras has a line per image: rendered once.
+                if not line.startswith("#") and len(cols) >= 4 and cols[3].startswith("complete") and \
+                        (hw, cols[0]) not in out:
+                    out.append((hw, cols[0]))
+    return out
+
+
+def identical(a, b):
+    """rtdiff at tolerance 0: no channel of any pixel differs."""
+    r = subprocess.run([RTDIFF, "--tolerance", "0", "--fail-above", "0", a, b], capture_output=True, text=True)
+    return r.returncode == 0, (r.stdout + r.stderr).strip().splitlines()[-1:] or [""]
