@@ -56,9 +56,10 @@ BUILD := build/$(MARCH)
 # a clash. main.cpp picks one copy per run (--precision); nothing else branches on the
 # precision. The only code outside namespace rt, compiled once, in the double copy: stb's
 # (stb_impl.cpp, the writer; stb_image_impl.cpp, the reader) and the command-line helpers
-# (namespace rtcli, cli/options.cpp), which do not use Real.
+# (namespace rtcli, cli/options.cpp) and tinygltf's (namespace rtgltf, convert/gltf_io.cpp),
+# which do not use Real.
 FLOAT_CPPFLAGS := -DRT_REAL_FLOAT -Drt=rt_float
-ONCE_SRC := src/image/stb_impl.cpp src/image/stb_image_impl.cpp src/cli/options.cpp
+ONCE_SRC := src/image/stb_impl.cpp src/image/stb_image_impl.cpp src/cli/options.cpp src/convert/gltf_io.cpp
 
 # Every src/**/*.cpp is library code except program entry points (main.cpp, *_main.cpp).
 # The library is two archives per precision: librt.a, what ./raytracer links, and
@@ -193,7 +194,7 @@ clean:
 # linked; otherwise the code is compiled with -DMACRO and does without (mk/convert.mk, mk/png.mk).
 define optional_library
 ifeq ($$(origin $(1)),undefined)
-  $(1) := $$(shell printf '\043include <$(2)>\n' | $$(CXX) -x c++ -E -o /dev/null - 2>/dev/null && echo 1)
+  $(1) := $$(shell printf '\043include <$(2)>\n' | $$(CXX) $$(CPPFLAGS) -x c++ -E -o /dev/null - 2>/dev/null && echo 1)
 endif
 ifeq ($$($(1)),1)
   override LDLIBS += $(3)

@@ -4,7 +4,8 @@
 # It holds Makefile, mk/, include/, src/, scenes/ and README.md (the files git knows of,
 # committed or not, minus ignored ones), plus third_party/: the headers this build uses,
 # copied now from the Debian packages (nlohmann/ from nlohmann-json3-dev, CLI/ from
-# libcli11-dev, stb/stb_image_write.h and stb/stb_image.h from libstb-dev) with their
+# libcli11-dev, stb/stb_image_write.h and stb/stb_image.h from libstb-dev, tiny_gltf.h from
+# libtinygltf-dev, header-only: `make rtconvert` reads and writes glTF with it) with their
 # copyright files. The browser page's files (src/web/, include/rt/web/, mk/web.mk) are left
 # out: the submission builds ./raytracer, and they would only lengthen its build.
 # The Makefile sees third_party/stb/stb_image_write.h and compiles with -Ithird_party
@@ -32,23 +33,27 @@ DIST_FILES   = $(filter-out src/web/% include/rt/web/% mk/web.mk,$(shell \
 DIST_NLOHMANN := /usr/include/nlohmann
 DIST_STB      := /usr/include/stb
 DIST_CLI11    := /usr/include/CLI
+DIST_TINYGLTF := /usr/include/tiny_gltf.h
 
 .PHONY: dist dist-check
 dist:
 	@test -f $(DIST_NLOHMANN)/json.hpp || { echo "make dist: $(DIST_NLOHMANN)/json.hpp missing (apt-get install nlohmann-json3-dev)"; exit 1; }
 	@test -f $(DIST_CLI11)/CLI.hpp || { echo "make dist: $(DIST_CLI11)/CLI.hpp missing (apt-get install libcli11-dev)"; exit 1; }
 	@test -f $(DIST_STB)/stb_image_write.h -a -f $(DIST_STB)/stb_image.h || { echo "make dist: $(DIST_STB)/stb_image*.h missing (apt-get install libstb-dev)"; exit 1; }
+	@test -f $(DIST_TINYGLTF) || { echo "make dist: $(DIST_TINYGLTF) missing (apt-get install libtinygltf-dev)"; exit 1; }
 	@rm -rf $(DIST_STAGE) && mkdir -p $(DIST_STAGE)/third_party/stb
 	@for f in $(DIST_FILES); do [ -f "$$f" ] && { mkdir -p "$(DIST_STAGE)/$$(dirname "$$f")"; cp -p "$$f" "$(DIST_STAGE)/$$f"; }; done; true
 	@cp -R $(DIST_NLOHMANN) $(DIST_STAGE)/third_party/nlohmann
 	@cp -R $(DIST_CLI11) $(DIST_STAGE)/third_party/CLI
 	@cp $(DIST_STB)/stb_image_write.h $(DIST_STB)/stb_image.h $(DIST_STAGE)/third_party/stb/
+	@mkdir -p $(DIST_STAGE)/third_party/tinygltf && cp $(DIST_TINYGLTF) $(DIST_STAGE)/third_party/
 	@cp /usr/share/doc/nlohmann-json3-dev/copyright $(DIST_STAGE)/third_party/nlohmann/COPYRIGHT 2>/dev/null || true
 	@cp /usr/share/doc/libcli11-dev/copyright $(DIST_STAGE)/third_party/CLI/COPYRIGHT 2>/dev/null || true
 	@cp /usr/share/doc/libstb-dev/copyright $(DIST_STAGE)/third_party/stb/COPYRIGHT 2>/dev/null || true
+	@cp /usr/share/doc/libtinygltf-dev/copyright $(DIST_STAGE)/third_party/tinygltf/COPYRIGHT 2>/dev/null || true
 	@{ [ -f third_party/README.md ] && cat third_party/README.md; echo; \
 	   echo "Copied by make dist on $$(date -u +%Y-%m-%d) from:"; echo; \
-	   dpkg-query -W -f '- $${Package} $${Version}\n' nlohmann-json3-dev libcli11-dev libstb-dev 2>/dev/null || echo "- $(DIST_NLOHMANN), $(DIST_CLI11), $(DIST_STB)"; \
+	   dpkg-query -W -f '- $${Package} $${Version}\n' nlohmann-json3-dev libcli11-dev libstb-dev libtinygltf-dev 2>/dev/null || echo "- $(DIST_NLOHMANN), $(DIST_CLI11), $(DIST_STB), $(DIST_TINYGLTF)"; \
 	 } > $(DIST_STAGE)/third_party/README.md
 	@printf '%s\n' '# Written by make dist: this folder is the submission tarball (docs/dist.md in the' \
 	    '# repository). Plain make builds ./raytracer alone, double precision only.' \

@@ -15,12 +15,15 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <map>
 
 #include "gltf_io.h"
 #include "rt/convert/convert.h"
 #include "rt/convert/gltf_materials.h"
 #include "rt/core/error.h"
+#include "rt/io/atomic_file.h"
+#include "rt/io/files.h"
 #include "rt/loader/scene_desc.h"
 #include "scene_import.h"
 
@@ -29,6 +32,7 @@ namespace rt {
 namespace {
 
 using json = nlohmann::json;
+using rtgltf::to_value;
 
 std::array<double, 3> arr(const Vec3& v) { return {double(v.x), double(v.y), double(v.z)}; }
 
@@ -117,7 +121,11 @@ Geometry add_geometry(BufferWriter& buffers, const std::vector<Vec3>& positions,
         }
     g.positions = buffers.floats(p, 3, true);
     g.indices = buffers.indices(indices);
-    if (smooth) g.normals = buffers.floats(vertex_normals(positions, indices), 3, false);
+    if (smooth) {
+        g.normals = buffers.floats(vertex_normals(positions, indices), 3, false);
+        // The import welds vertices other tools split; these are as the scene has them.
+        g.extras["vertices"] = positions.size();
+    }
     if (!exact && keep_exact) {  // positions a float cannot hold: their doubles
         json exact_positions = json::array();
         for (const Vec3& v : positions)
@@ -376,7 +384,23 @@ std::vector<std::string> write_gltf(const SceneDesc& scene, const std::string& p
                            " meshes, " + std::to_string(model.materials.size()) + " materials, " +
                            std::to_string(model.cameras.size()) + " cameras, " + std::to_string(model.lights.size()) +
                            " point lights");
-    return save_gltf(model, path);
+    namespace fs = std::filesystem;
+    const bool binary = lower_extension(path) == ".glb";
+    const std::string bin_name = fs::path(path).stem().string() + ".bin";
+    rtgltf::Serialized bytes;
+    try {
+        bytes = rtgltf::serialize(model, binary, bin_name);
+    } catch (const rtgltf::Error& e) {
+        throw InputError(path + ": cannot write: " + e.what());
+    }
+    std::vector<std::string> written{path};
+    if (!bytes.bin.empty() || (!binary && !model.buffers.empty())) {
+        const std::string bin_path = (fs::path(path).parent_path() / bin_name).string();
+        write_file_atomic(bin_path, bytes.bin);
+        written.push_back(bin_path);
+    }
+    write_file_atomic(path, bytes.main);  // last, so that it never names a missing buffer
+    return written;
 }
 #else
 std::vector<std::string> write_gltf(const SceneDesc&, const std::string& path, const ConvertOptions&, ConvertResult&) {

@@ -21,6 +21,7 @@
 #include "rt/convert/gltf_materials.h"
 #include "rt/core/affine.h"
 #include "rt/core/error.h"
+#include "rt/io/files.h"
 #include "scene_import.h"
 
 namespace rt {
@@ -30,6 +31,7 @@ namespace {
 using ojson = nlohmann::ordered_json;
 using json = nlohmann::json;
 using V3 = std::array<double, 3>;
+using rtgltf::to_json;
 
 // Extensions the import reads, or may leave aside without changing what a scene shows.
 const std::set<std::string> kUnderstood = {
@@ -223,6 +225,40 @@ private:
         return true;
     }
 
+    // Joins vertices at the same place whose normals agree to 1e-6 (under 0.08 degrees):
+    // glTF writers split a vertex wherever some attribute differs (texture seams, the
+    // rounding of stored normals), which the course's smooth shading, averaging over the
+    // faces that share a vertex, would show as seams. Creases, where normals differ, stay.
+    static void weld(Geometry& g, const std::vector<double>& normals) {
+        if (normals.size() != g.positions.size()) return;
+        std::map<std::array<double, 3>, std::vector<uint32_t>> at;  // position -> kept vertices there
+        std::vector<uint32_t> kept_as(g.positions.size() / 3);
+        std::vector<double> positions, kept_normals;
+        for (size_t i = 0; i < kept_as.size(); ++i) {
+            const V3 p{g.positions[3 * i], g.positions[3 * i + 1], g.positions[3 * i + 2]};
+            const V3 n{normals[3 * i], normals[3 * i + 1], normals[3 * i + 2]};
+            const double nl = norm(n);
+            std::vector<uint32_t>& here = at[p];
+            bool found = false;
+            for (uint32_t k : here) {
+                const double* q = &kept_normals[3 * size_t(k)];
+                const double ql = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2]);
+                if (nl > 0 && ql > 0 && (n[0] * q[0] + n[1] * q[1] + n[2] * q[2]) / (nl * ql) >= 1 - 1e-6) {
+                    kept_as[i] = k;
+                    found = true;
+                    break;
+                }
+            }
+            if (found) continue;
+            kept_as[i] = uint32_t(positions.size() / 3);
+            here.push_back(kept_as[i]);
+            positions.insert(positions.end(), p.begin(), p.end());
+            kept_normals.insert(kept_normals.end(), n.begin(), n.end());
+        }
+        for (uint32_t& index : g.indices) index = kept_as[index];
+        g.positions = std::move(positions);
+    }
+
     // The geometry of primitive p of mesh m, read once per accessor pair; nullptr for a
     // primitive that is skipped (with a warning).
     Geometry* geometry(int m, int p) {
@@ -255,10 +291,15 @@ private:
                  std::to_string(g.indices.size() % 3) + " left out");
             g.indices.resize(g.indices.size() - g.indices.size() % 3);
         }
-        if (const auto nrm = prim.attributes.find("NORMAL"); nrm != prim.attributes.end())
-            g.smooth = !flat_normals(g, positions(nrm->second, where + "/attributes/NORMAL"));
-        // Positions a float could not hold, kept by the export: used while they round to these.
         const json extras = ours(model_.meshes[size_t(m)].extras);
+        if (const auto nrm = prim.attributes.find("NORMAL"); nrm != prim.attributes.end()) {
+            const std::vector<double> normals = positions(nrm->second, where + "/attributes/NORMAL");
+            g.smooth = !flat_normals(g, normals);
+            // Vertices as the export wrote them need no welding; other tools split them.
+            const bool as_exported = extras.is_object() && extras.value("vertices", json()) == json(n);
+            if (g.smooth && !as_exported) weld(g, normals);
+        }
+        // Positions a float could not hold, kept by the export: used while they round to these.
         if (extras.is_object() && extras.contains("positions")) {
             const json& exact = extras["positions"];
             bool same = exact.is_array() && exact.size() == g.positions.size();
@@ -787,7 +828,13 @@ private:
 SceneImport import_gltf(const std::string& path, const ConvertOptions& options, const std::string& ply_prefix) {
     SceneImport out;
     tinygltf::Model model;
-    load_gltf(path, model, out.warnings);
+    const std::string bytes = read_text_file(path);
+    const std::string dir = dirname_of(path);
+    try {
+        rtgltf::parse(bytes, path, dir.empty() ? "." : dir, model, out.warnings);
+    } catch (const rtgltf::Error& e) {
+        throw InputError(e.what());
+    }
     Importer(path, model, options, ply_prefix, ply_prefix, out).run();
     return out;
 }

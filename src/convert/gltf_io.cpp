@@ -1,7 +1,9 @@
 // glTF files in and out (gltf_io.h): tinygltf's code is compiled here, once, without
 // its image reading and writing (TINYGLTF_NO_STB_IMAGE*, TINYGLTF_NO_EXTERNAL_IMAGE):
 // textures are not in the course's format, and an image it cannot read must not stop a
-// conversion that does not need it.
+// conversion that does not need it. Nothing here depends on the precision: one copy, in
+// the double library, serves both (namespace rtgltf, which the float copy's -Drt=rt_float
+// leaves alone; see rt/cli/options.h).
 #ifndef RT_NO_GLTF  // built without tinygltf (mk/convert.mk): glTF is refused with an error
 #define TINYGLTF_IMPLEMENTATION
 #define TINYGLTF_NO_STB_IMAGE
@@ -17,16 +19,12 @@
 #endif
 
 #include <cstring>
-#include <filesystem>
 #include <regex>
 #include <sstream>
 
 #include "gltf_io.h"
-#include "rt/core/error.h"
-#include "rt/io/atomic_file.h"
-#include "rt/io/files.h"
 
-namespace rt {
+namespace rtgltf {
 #ifndef RT_NO_GLTF
 namespace {
 
@@ -45,24 +43,23 @@ std::string first_line(const std::string& text) {
 
 }  // namespace
 
-void load_gltf(const std::string& path, tinygltf::Model& model, std::vector<std::string>& warnings) {
-    const std::string bytes = read_text_file(path);
+void parse(const std::string& bytes, const std::string& path, const std::string& base_dir, tinygltf::Model& model,
+           std::vector<std::string>& warnings) {
     tinygltf::TinyGLTF gltf;
     gltf.SetImageLoader(skip_image, nullptr);
     std::string err, warn;
-    const std::string dir = dirname_of(path);
-    const std::string base = dir.empty() ? "." : dir;
     const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
     if (binary && bytes.size() >= 12) {  // the GLB header: magic, version, total length
         uint32_t length;
         std::memcpy(&length, bytes.data() + 8, 4);
         if (length > bytes.size())
-            throw InputError(path + ": truncated: its GLB header says " + std::to_string(length) +
-                             " bytes, the file has " + std::to_string(bytes.size()));
+            throw Error(path + ": truncated: its GLB header says " + std::to_string(length) + " bytes, the file has " +
+                        std::to_string(bytes.size()));
     }
     const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
-    const bool ok = binary ? gltf.LoadBinaryFromMemory(&model, &err, &warn, data, unsigned(bytes.size()), base)
-                           : gltf.LoadASCIIFromString(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), base);
+    const bool ok = binary
+                        ? gltf.LoadBinaryFromMemory(&model, &err, &warn, data, unsigned(bytes.size()), base_dir)
+                        : gltf.LoadASCIIFromString(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), base_dir);
     if (!ok || !err.empty()) {
         std::string what = err.empty() ? std::string("not a glTF file") : first_line(err);
         // "File not found : x.bin": which buffer or image names it.
@@ -75,44 +72,38 @@ void load_gltf(const std::string& path, tinygltf::Model& model, std::vector<std:
                     for (size_t i = 0; i < j[kind].size(); ++i)
                         if (j[kind][i].is_object() && j[kind][i].value("uri", "") == file)
                             what = std::string("/") + kind + "/" + std::to_string(i) + ": its file " + file +
-                                   " is missing (looked in " + base + ")";
+                                   " is missing (looked in " + base_dir + ")";
         }
-        throw InputError(path + ": " + what);
+        throw Error(path + ": " + what);
     }
     std::istringstream lines(warn);
     for (std::string line; std::getline(lines, line);)
         if (!line.empty()) warnings.push_back(path + ": " + first_line(line));
 }
 
-std::vector<std::string> save_gltf(tinygltf::Model& model, const std::string& path) {
-    const bool binary = lower_extension(path) == ".glb";
-    std::vector<std::string> written{path};
-    std::ostringstream out;
+Serialized serialize(tinygltf::Model& model, bool binary, const std::string& bin_name) {
+    Serialized out;
+    std::ostringstream text;
     tinygltf::TinyGLTF gltf;
     if (binary || model.buffers.empty()) {
-        if (!gltf.WriteGltfSceneToStream(&model, out, /*prettyPrint=*/true, binary))
-            throw InputError(path + ": cannot write the glTF");
-        write_file_atomic(path, out.str());
-        return written;
+        if (!gltf.WriteGltfSceneToStream(&model, text, /*prettyPrint=*/true, binary))
+            throw Error("tinygltf could not write the model");
+        out.main = text.str();
+        return out;
     }
     // .gltf: tinygltf's stream writer embeds buffers as data URIs; buffer 0 goes beside
-    // the file instead, as <stem>.bin, and the JSON names it.
-    namespace fs = std::filesystem;
-    const std::string bin_name = fs::path(path).stem().string() + ".bin";
-    const std::string bin_path = (fs::path(path).parent_path() / bin_name).string();
+    // the file instead, and the JSON names it.
     std::vector<unsigned char> data = std::move(model.buffers[0].data);
     model.buffers[0].data.clear();
-    const bool ok = gltf.WriteGltfSceneToStream(&model, out, /*prettyPrint=*/true, false);
+    const bool ok = gltf.WriteGltfSceneToStream(&model, text, /*prettyPrint=*/true, false);
     model.buffers[0].data = std::move(data);
-    if (!ok) throw InputError(path + ": cannot write the glTF");
-    nlohmann::ordered_json j = nlohmann::ordered_json::parse(out.str());
+    if (!ok) throw Error("tinygltf could not write the model");
+    nlohmann::ordered_json j = nlohmann::ordered_json::parse(text.str());
     j["buffers"][0]["uri"] = bin_name;
     j["buffers"][0]["byteLength"] = model.buffers[0].data.size();
-    const std::vector<unsigned char>& bytes = model.buffers[0].data;
-    write_file_atomic(bin_path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
-    write_file_atomic(path, j.dump(2) + "\n");
-    written.push_back(bin_path);
-    return written;
+    out.main = j.dump(2) + "\n";
+    out.bin.assign(reinterpret_cast<const char*>(model.buffers[0].data.data()), model.buffers[0].data.size());
+    return out;
 }
 
 nlohmann::json to_json(const tinygltf::Value& v) {
@@ -159,4 +150,4 @@ tinygltf::Value to_value(const nlohmann::json& j) {
 }
 #endif  // RT_NO_GLTF
 
-}  // namespace rt
+}  // namespace rtgltf

@@ -1,9 +1,15 @@
 // Internal: glTF 2.0 files in and out through tinygltf (Debian libtinygltf-dev, its code
-// compiled once, in gltf_io.cpp), and the conversions between tinygltf's extras values
-// and nlohmann::json that the importer and exporter read and write them with.
+// compiled once, in gltf_io.cpp), and the conversions between tinygltf's extras values and
+// nlohmann::json that the importer and exporter use.
+//
+// Outside namespace rt: nothing in gltf_io.cpp depends on the precision, so one copy (in the
+// double library) serves both (FLOAT_CPPFLAGS renames namespace rt, not rtgltf). It reads and
+// writes no files itself; its errors are rtgltf::Error, which the callers make
+// rt::InputErrors.
 #pragma once
 #include <nlohmann/json.hpp>
 
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -11,6 +17,31 @@ namespace tinygltf {
 class Model;
 class Value;
 }  // namespace tinygltf
+
+namespace rtgltf {
+
+struct Error : std::runtime_error {
+    using std::runtime_error::runtime_error;
+};
+
+// Parses a glTF (JSON, or .glb when `bytes` starts with its magic) read from `path`, its
+// external buffers read from `base_dir`. Throws Error, one line naming `path` and, where
+// known, the element (/buffers/0). Images are not read (the format has no textures);
+// `warnings` gets tinygltf's warnings.
+void parse(const std::string& bytes, const std::string& path, const std::string& base_dir, tinygltf::Model& model,
+           std::vector<std::string>& warnings);
+
+// The bytes of `model` as a .glb (`binary`: one file, its buffer inside), or as a .gltf
+// whose buffer 0 is the file `bin_name` beside it, with `bin` its bytes.
+struct Serialized {
+    std::string main, bin;
+};
+Serialized serialize(tinygltf::Model& model, bool binary, const std::string& bin_name);
+
+nlohmann::json to_json(const tinygltf::Value& v);
+tinygltf::Value to_value(const nlohmann::json& j);
+
+}  // namespace rtgltf
 
 namespace rt {
 
@@ -21,20 +52,9 @@ struct ConvertResult;
 // The key of the extras the export writes and the import reads (docs/gltf.md).
 inline constexpr const char* kGltfExtrasKey = "ceng795";
 
-// Reads `path` (.gltf with its buffers beside it, or .glb). Throws rt::InputError, one
-// line naming the file and, where tinygltf says, the element (/buffers/0). Images are
-// not read (the format has no textures); `warnings` gets tinygltf's warnings.
-void load_gltf(const std::string& path, tinygltf::Model& model, std::vector<std::string>& warnings);
-
-// Writes `model` to `path` atomically: a .glb with its buffer inside, or a .gltf with
-// buffer 0 written beside it as <stem>.bin. Returns the files written, `path` first.
-std::vector<std::string> save_gltf(tinygltf::Model& model, const std::string& path);
-
-// A loaded scene as glTF (gltf_export.cpp), written by save_gltf; the files written.
+// A loaded scene as a glTF file at `path` (.gltf + <stem>.bin, or .glb), each file written
+// atomically (gltf_export.cpp); the files written, `path` first.
 std::vector<std::string> write_gltf(const SceneDesc& scene, const std::string& path, const ConvertOptions& options,
                                     ConvertResult& result);
-
-nlohmann::json to_json(const tinygltf::Value& v);
-tinygltf::Value to_value(const nlohmann::json& j);
 
 }  // namespace rt

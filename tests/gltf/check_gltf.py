@@ -88,7 +88,7 @@ def round_trips(shared, blender):
     rows = []
     for i, (hw, rel) in enumerate(complete_scenes(shared)):
         scene = os.path.join(shared, "scenes", hw, rel)
-        d = os.path.join(OUT, scene_name(hw, rel))
+        d = os.path.join(OUT, "blender" if blender else "rtconvert", scene_name(hw, rel))
         shutil.rmtree(d, ignore_errors=True)
         os.makedirs(d)
         original = render(scene, os.path.join(d, "original"))
