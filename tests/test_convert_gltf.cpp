@@ -141,8 +141,8 @@ TEST(GltfMaterials, ExportTableByHand) {
     const rt::PbrMaterial p = rt::pbr_of(plain);
     EXPECT_EQ(p.metallic, 0);
     EXPECT_DOUBLE_EQ(p.roughness, 0.5);
-    EXPECT_DOUBLE_EQ(p.base[0], 0.2);
-    EXPECT_DOUBLE_EQ(p.base[2], 1);  // clamped to glTF's range
+    EXPECT_DOUBLE_EQ(p.base[0], double(rt::Real(0.2)));  // as the build holds it
+    EXPECT_DOUBLE_EQ(p.base[2], 1);                      // clamped to glTF's range
 
     // A conductor: the normal-incidence reflectance kept. n = 2, k = 0: F0 = 1/9; the
     // import's metal (n 1, k 10) has F0 = 100/104.
@@ -151,7 +151,7 @@ TEST(GltfMaterials, ExportTableByHand) {
     metal.mirror = {0.9, 0.9, 0.9};
     metal.refraction_index = 2;
     metal.absorption_index = 0;
-    EXPECT_NEAR(rt::pbr_of(metal).base[0], 0.9 * (1.0 / 9) / (100.0 / 104), 1e-15);
+    EXPECT_NEAR(rt::pbr_of(metal).base[0], double(rt::Real(0.9)) * (1.0 / 9) / (100.0 / 104), 1e-15);
     EXPECT_EQ(rt::pbr_of(metal).metallic, 1);
 
     rt::MaterialDesc glass;
@@ -162,7 +162,7 @@ TEST(GltfMaterials, ExportTableByHand) {
     EXPECT_EQ(g.transmission, 1);
     EXPECT_EQ(g.ior, 1.5);
     EXPECT_EQ(g.attenuation_distance, 1);
-    EXPECT_DOUBLE_EQ(g.attenuation[0], std::exp(-0.1));
+    EXPECT_DOUBLE_EQ(g.attenuation[0], std::exp(-double(rt::Real(0.1))));
     EXPECT_DOUBLE_EQ(g.attenuation[1], 1);
     EXPECT_DOUBLE_EQ(g.attenuation[2], std::exp(-2.0));
 }
@@ -189,7 +189,7 @@ TEST(GltfMaterials, ImportTableByHand) {
     glass.attenuation[0] = std::exp(-1.0);
     const rt::MaterialDesc g = rt::material_of(glass);
     EXPECT_EQ(g.type, rt::MaterialType::Dielectric);
-    EXPECT_DOUBLE_EQ(g.refraction_index, 1.33);
+    EXPECT_EQ(g.refraction_index, rt::Real(1.33));
     EXPECT_DOUBLE_EQ(g.absorption_coefficient.x, 0.5);  // -ln(e^-1) / 2
     EXPECT_EQ(g.absorption_coefficient.y, 0);
     EXPECT_TRUE(same(g.diffuse, {0, 0, 0}));
@@ -333,6 +333,59 @@ TEST(GltfImport, NonTrianglePrimitivesAreSkippedWithAWarning) {
     EXPECT_TRUE(any_contains(im.result.warnings, "/meshes/1/primitives/0: mode 1"));
 }
 
+// A tent of two triangles meeting at the ridge x = 0 (vertices 0..3), as a writer splits it:
+// every triangle its own three vertices, with `normals` per vertex.
+GltfFile tent(const std::vector<float>& normals) {
+    GltfFile f;
+    const std::vector<float> p = {-1, 0, 1, 0, 1, 1, 0, 1, -1, /**/ 0, 1, 1, 1, 0, 1, 0, 1, -1};
+    json extra = {{"attributes", {{"POSITION", f.positions(p)}, {"NORMAL", f.positions(normals)}}}};
+    f.node({{"mesh", f.mesh(p, {0, 1, 2, 3, 4, 5}, extra)}});
+    return f;
+}
+
+TEST(GltfImport, SplitVerticesWithOneNormalAreJoinedCreasesAndFlatFacesAreNot) {
+    const float s = float(std::sqrt(0.5)), up_a[3] = {-s, s, 0}, up_b[3] = {s, s, 0};
+    auto normals = [](std::vector<std::array<float, 3>> n) {
+        std::vector<float> out;
+        for (const auto& v : n) out.insert(out.end(), v.begin(), v.end());
+        return out;
+    };
+    {  // smooth: the ridge vertices carry the same normal (up), split only by the writer
+        TempDir tmp;
+        const Imported im = import(
+            tmp,
+            tent(normals({{up_a[0], up_a[1], 0}, {0, 1, 0}, {0, 1, 0}, {0, 1, 0}, {up_b[0], up_b[1], 0}, {0, 1, 0}}))
+                .write(tmp));
+        ASSERT_EQ(im.scene.meshes.size(), 1u);
+        EXPECT_EQ(im.scene.meshes[0].shading, rt::ShadingMode::Smooth);
+        EXPECT_EQ(im.scene.meshes[0].positions.size(), 4u);  // the ridge's two vertices joined
+    }
+    {  // a crease: each side's ridge vertices carry its own face's normal, but not all corners do
+        TempDir tmp;
+        const Imported im = import(tmp, tent(normals({{up_a[0], up_a[1], 0},
+                                                      {up_a[0], up_a[1], 0},
+                                                      {0, 1, 0},
+                                                      {up_b[0], up_b[1], 0},
+                                                      {up_b[0], up_b[1], 0},
+                                                      {0, 1, 0}}))
+                                            .write(tmp));
+        EXPECT_EQ(im.scene.meshes[0].shading, rt::ShadingMode::Smooth);
+        EXPECT_EQ(im.scene.meshes[0].positions.size(), 5u);  // only the third ridge vertex joined
+    }
+    {  // flat: every corner carries its triangle's own normal
+        TempDir tmp;
+        const Imported im = import(tmp, tent(normals({{up_a[0], up_a[1], 0},
+                                                      {up_a[0], up_a[1], 0},
+                                                      {up_a[0], up_a[1], 0},
+                                                      {up_b[0], up_b[1], 0},
+                                                      {up_b[0], up_b[1], 0},
+                                                      {up_b[0], up_b[1], 0}}))
+                                            .write(tmp));
+        EXPECT_EQ(im.scene.meshes[0].shading, rt::ShadingMode::Flat);
+        EXPECT_EQ(im.scene.meshes[0].positions.size(), 6u);
+    }
+}
+
 TEST(GltfImport, BadInputNamesTheElementAndWritesNothing) {
     TempDir tmp;
     auto expect = [&](GltfFile f, const std::string& part, const std::string& name) {
@@ -418,8 +471,8 @@ TEST(GltfExport, BackToTheSameSceneThroughExtras) {
         EXPECT_EQ(a.max_recursion_depth, b.max_recursion_depth);
         EXPECT_TRUE(same(a.ambient_light, b.ambient_light));
         ASSERT_EQ(b.cameras.size(), 1u);
-        EXPECT_EQ(b.cameras[0].left, -0.3);
-        EXPECT_EQ(b.cameras[0].top, 0.2);
+        EXPECT_EQ(b.cameras[0].left, rt::Real(-0.3));
+        EXPECT_EQ(b.cameras[0].top, rt::Real(0.2));
         EXPECT_EQ(b.cameras[0].width, 30);
         EXPECT_EQ(b.cameras[0].image_name, "small.png");
         EXPECT_TRUE(same(b.point_lights[0].intensity, {300, 200, 100}));
@@ -472,7 +525,7 @@ TEST(GltfExport, CameraNodeLooksWhereTheCameraLooks) {
             EXPECT_EQ(n["translation"], json({0.0, 0.0, 5.0}));
         }
     // yfov from the near plane: 2 atan(0.2).
-    EXPECT_DOUBLE_EQ(g["cameras"][0]["perspective"]["yfov"].get<double>(), 2 * std::atan(0.2));
+    EXPECT_DOUBLE_EQ(g["cameras"][0]["perspective"]["yfov"].get<double>(), 2 * std::atan(double(rt::Real(0.2))));
     EXPECT_DOUBLE_EQ(g["cameras"][0]["perspective"]["aspectRatio"].get<double>(), 1.5);
 }
 

@@ -38,7 +38,8 @@ int main(int argc, char** argv) {
     std::vector<std::string> files;
     CLI::App app;
     cli::setup(app, kProgram);
-    const std::string obj_import = "options (OBJ and glTF import)", gltf_import = "options (glTF import)",
+    const std::string obj_import = "options (OBJ import)", model_import = "options (OBJ and glTF import)",
+                      gltf_import = "options (glTF import)", gltf = "options (glTF import and export)",
                       obj_export = "options (OBJ and glTF export)";
     cli::add_choice(
         app, "--shading", "auto (default: smooth where the OBJ has normals or smoothing groups), flat or smooth",
@@ -53,10 +54,10 @@ int main(int argc, char** argv) {
                        options.height = static_cast<int>(cli::whole_number("--size", v.substr(x + 1), 1, 16384));
                        options.size_given = true;
                    })
-        ->group(obj_import);
+        ->group(model_import);
     cli::add_text(app, "--image", "NAME", "the camera's image name (default: OUTPUT's stem + .png)", options.image_name,
                   "a name")
-        ->group(obj_import);
+        ->group(model_import);
     cli::add_value(app, "--camera", "N|all", "which glTF camera: the N-th of the file's cameras, or all (default 1)",
                    [&options](const std::string& v) {
                        options.camera = v == "all" ? 0 : static_cast<int>(cli::whole_number("--camera", v, 1, 1 << 20));
@@ -68,7 +69,7 @@ int main(int argc, char** argv) {
     cli::add_number(app, "--light-scale", "X",
                     "course Intensity per candela of a glTF point light (default 255/(683 pi), docs/gltf.md)",
                     options.light_scale, "a positive number", [](double x) { return x > 0 && std::isfinite(x); })
-        ->group(gltf_import);
+        ->group(gltf);
     cli::add_whole(app, "--sphere-segments", "N", "segments around each tessellated sphere (default 48)",
                    options.sphere_segments, 3, 4096)
         ->group(obj_export);

@@ -5,13 +5,6 @@
 // course's material values, a camera's near plane and image, the scene's settings,
 // positions that are not floats, the exact sphere or plane behind a tessellation) goes
 // into "ceng795" extras, which the import uses while they agree with the glTF values.
-#ifndef RT_NO_GLTF
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wshadow"
-#include <tiny_gltf.h>
-#pragma GCC diagnostic pop
-#endif
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>

@@ -3,13 +3,6 @@
 // Composite transformations, perspective cameras and KHR_lights_punctual point lights
 // the scene's, materials by the table of gltf_materials.h. "ceng795" extras written by
 // the export are used where they still agree with what the glTF says.
-#ifndef RT_NO_GLTF
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wshadow"
-#include <tiny_gltf.h>
-#pragma GCC diagnostic pop
-#endif
-
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -67,10 +60,14 @@ struct Geometry {
     std::vector<double> positions;
     std::vector<uint32_t> indices;
     bool smooth = false;
-    std::string where;  // /meshes/m/primitives/p, for messages
-    int base = -1;      // the Objects/Mesh _id that shows it first, once written
-    size_t ply = 0;     // its ImportedMesh
+    std::string where;                                                         // /meshes/m/primitives/p, for messages
+    V3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};  // its box
+    int base = -1;   // the Objects/Mesh _id that shows it first, once written
+    size_t ply = 0;  // its ImportedMesh
 };
+
+// Deeper node hierarchies are refused (a bound on the importer's recursion).
+constexpr int kMaxDepth = 1000;
 
 struct CameraUse {
     int camera;
@@ -308,6 +305,10 @@ private:
             if (same)
                 for (size_t i = 0; i < g.positions.size(); ++i) g.positions[i] = exact[i].get<double>();
         }
+        for (size_t i = 0; i < g.positions.size(); ++i) {
+            g.lo[i % 3] = std::min(g.lo[i % 3], g.positions[i]);
+            g.hi[i % 3] = std::max(g.hi[i % 3], g.positions[i]);
+        }
         return &geometries_.emplace(key, std::move(g)).first->second;
     }
 
@@ -367,9 +368,10 @@ private:
 
     // `chain`: the nodes above (and with) this one whose matrices are not the identity,
     // innermost first, the order in which the course applies a Transformations list.
-    void visit(int index, const Affine& parent, std::vector<int> chain, const std::string& from) {
+    void visit(int index, const Affine& parent, std::vector<int> chain, const std::string& from, int depth = 0) {
         if (index < 0 || size_t(index) >= model_.nodes.size())
             fail(from, "node " + std::to_string(index) + " does not exist");
+        if (depth > kMaxDepth) fail(from, "nodes nested more than " + std::to_string(kMaxDepth) + " deep");
         if (visited_[size_t(index)])
             fail(from, "node " + std::to_string(index) + " is reached twice (a cycle, or two parents)");
         visited_[size_t(index)] = true;
@@ -399,7 +401,7 @@ private:
                 fail(np + "/extensions/KHR_lights_punctual", "names no light of the file");
             add_light(l["light"].get<int>(), world);
         }
-        for (int c : n.children) visit(c, world, chain, np + "/children");
+        for (int c : n.children) visit(c, world, chain, np + "/children", depth + 1);
     }
 
     // The Transformations list of a chain of nodes: one Composite per node, its local
@@ -426,8 +428,11 @@ private:
 
     // ---- Meshes, spheres, planes ------------------------------------------------------
 
-    std::string material_ref(int material) {
+    std::string material_ref(int material, const std::string& where) {
         if (material >= 0 && size_t(material) < model_.materials.size()) return std::to_string(material + 1);
+        if (material >= 0)
+            fail(where + "/material", "material " + std::to_string(material) + " does not exist (the file has " +
+                                          std::to_string(model_.materials.size()) + ")");
         needs_default_material_ = true;
         return std::to_string(model_.materials.size() + 1);
     }
@@ -443,9 +448,11 @@ private:
         for (size_t p = 0; p < mesh.primitives.size(); ++p) {
             Geometry* g = geometry(m, int(p));
             if (!g || g->indices.empty()) continue;
-            const std::string material = material_ref(mesh.primitives[p].material);
-            for (size_t i = 0; i < g->positions.size(); i += 3)
-                extent(apply(world, {g->positions[i], g->positions[i + 1], g->positions[i + 2]}, true));
+            const std::string material = material_ref(
+                mesh.primitives[p].material, "/meshes/" + std::to_string(m) + "/primitives/" + std::to_string(p));
+            for (int c = 0; c < 8; ++c)  // the corners of its box, moved
+                extent(apply(
+                    world, {(c & 1 ? g->hi : g->lo)[0], (c & 2 ? g->hi : g->lo)[1], (c & 4 ? g->hi : g->lo)[2]}, true));
             if (mesh.primitives.size() == 1 && as_shape(*g, extras, world, nodes, material)) continue;
             ojson o = ojson::object();
             if (options_.bake_transforms) {

@@ -11,18 +11,12 @@
 #define TINYGLTF_NO_EXTERNAL_IMAGE
 #define TINYGLTF_NO_INCLUDE_STB_IMAGE
 #define TINYGLTF_NO_INCLUDE_STB_IMAGE_WRITE
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wshadow"
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#include <tiny_gltf.h>
-#pragma GCC diagnostic pop
 #endif
+#include "gltf_io.h"  // includes tiny_gltf.h, here with its implementation
 
 #include <cstring>
 #include <regex>
 #include <sstream>
-
-#include "gltf_io.h"
 
 namespace rtgltf {
 #ifndef RT_NO_GLTF

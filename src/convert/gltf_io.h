@@ -13,10 +13,18 @@
 #include <string>
 #include <vector>
 
+#ifndef RT_NO_GLTF  // built without tinygltf (mk/convert.mk): glTF is refused with an error
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wshadow"
+#pragma GCC diagnostic ignored "-Wunused-parameter"
+#include <tiny_gltf.h>
+#pragma GCC diagnostic pop
+#else
 namespace tinygltf {
 class Model;
 class Value;
 }  // namespace tinygltf
+#endif
 
 namespace rtgltf {
 

@@ -59,13 +59,13 @@ mount --bind /usr/include "$work/orig_include"
 for f in "$work"/orig_include/* "$work"/orig_include/.[!.]*; do
     [ -e "$f" ] || continue
     case "$(basename "$f")" in
-        nlohmann|CLI|stb|libdeflate.h|pugixml.hpp|pugiconfig.hpp|tiny_obj_loader.h|gtest|gmock) continue ;;
+        nlohmann|CLI|stb|libdeflate.h|pugixml.hpp|pugiconfig.hpp|tiny_obj_loader.h|tiny_gltf.h|gtest|gmock) continue ;;
     esac
     ln -sfn "$f" "$work/include_farm/$(basename "$f")"
 done
 mount --bind "$work/include_farm" /usr/include
 : >"$work/empty"
-for lib in /usr/lib/*/libstb.* /usr/lib/*/libdeflate.* /usr/lib/*/libpugixml.* /usr/lib/*/libtinyobjloader* /usr/lib/*/libgtest*; do
+for lib in /usr/lib/*/libstb.* /usr/lib/*/libdeflate.* /usr/lib/*/libpugixml.* /usr/lib/*/libtinyobjloader* /usr/lib/*/libtinygltf* /usr/lib/*/libgtest*; do
     [ -e "$lib" ] && mount --bind "$work/empty" "$lib"
 done
 cd "$work/src"
@@ -99,7 +99,7 @@ if grep -E -- '-l(stb|deflate|pugixml|tinyobjloader)' "$work/build.log"; then fa
 if grep -E -- '-DRT_REAL_FLOAT|src/convert/|image_diff\.cpp|diff_page\.cpp' "$work/build.log"; then
     fail "plain make compiled the float copy or code ./raytracer does not link"
 fi
-if find build -name '*.d' -exec cat {} + | grep -E '/usr/include/(nlohmann|CLI|stb|libdeflate|pugixml|tiny_obj)'; then
+if find build -name '*.d' -exec cat {} + | grep -E '/usr/include/(nlohmann|CLI|stb|libdeflate|pugixml|tiny_obj|tiny_gltf)'; then
     fail "a dependency file names a packaged header"
 fi
 if ldd ./raytracer | grep -E 'libstb|libdeflate|pugixml|tinyobj'; then fail "./raytracer needs a packaged library"; fi
