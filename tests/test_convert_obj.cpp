@@ -445,7 +445,7 @@ TEST(ObjExport, OfficialXmlSceneExports) {
     rt::convert_file(path, tmp / "cb.obj");
     const rt::SceneDesc src = rt::load_scene(path);
     const rt::SceneDesc back = (rt::convert_file(tmp / "cb.obj", tmp / "cb.json"), rt::load_scene(tmp / "cb.json"));
-    EXPECT_EQ(triangle_count(back), triangle_count(src) + src.all<rt::Sphere>().size() * 2 * 48 * 23);
+    EXPECT_EQ(triangle_count(back), triangle_count(src) + src.all<rt::Sphere>().size() * 2 * 128 * 63);
 }
 
 #endif  // !defined(RT_NO_XML) && !defined(RT_NO_OBJ)

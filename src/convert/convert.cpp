@@ -132,6 +132,12 @@ ConvertResult convert_file(const std::string& input, const std::string& output, 
         // glTF names each camera's image itself (<stem>.png, or <stem>_<n>.png for several).
         if (o.image_name.empty() && from == SceneFormat::Obj) o.image_name = out_stem + ".png";
         SceneImport imp = from == SceneFormat::Obj ? import_obj(input, o, out_stem) : import_gltf(input, o, out_stem);
+        // Never a scene the renderer refuses (its PLY files are checked as they are written).
+        try {
+            (void)describe_scene(nlohmann::json(imp.scene), output);
+        } catch (const InputError& e) {
+            throw InputError(input + ": cannot convert: the scene made of it would not load (" + e.what() + ")");
+        }
         result.warnings = std::move(imp.warnings);
         result.notes = std::move(imp.notes);
         const std::string text = tree_text(imp.scene, to, output);

@@ -70,7 +70,7 @@ int main(int argc, char** argv) {
                     "course Intensity per candela of a glTF point light (default 255/(683 pi), docs/gltf.md)",
                     options.light_scale, "a positive number", [](double x) { return x > 0 && std::isfinite(x); })
         ->group(gltf);
-    cli::add_whole(app, "--sphere-segments", "N", "segments around each tessellated sphere (default 48)",
+    cli::add_whole(app, "--sphere-segments", "N", "segments around each tessellated sphere (default 128)",
                    options.sphere_segments, 3, 4096)
         ->group(obj_export);
     app.add_flag("-q,--quiet", quiet, "print errors only");

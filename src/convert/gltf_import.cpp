@@ -15,6 +15,7 @@
 #include "rt/core/affine.h"
 #include "rt/core/error.h"
 #include "rt/io/files.h"
+#include "rt/loader/scene_desc.h"
 #include "scene_import.h"
 
 namespace rt {
@@ -46,14 +47,22 @@ json ours(const tinygltf::Value& extras) {
     if (j.is_object() && j.contains(kGltfExtrasKey)) return j[kGltfExtrasKey];
     return nullptr;
 }
-bool vec3(const json& j, V3& out) {
-    if (!j.is_array() || j.size() != 3) return false;
-    for (size_t i = 0; i < 3; ++i) {
-        if (!j[i].is_number() || !std::isfinite(j[i].get<double>())) return false;
-        out[i] = j[i].get<double>();
-    }
+// Extras are read only when they hold what the loader accepts (numbers within +-1e30,
+// colours not negative); `out` is left alone otherwise.
+bool number(const json& j, double& out, double lo = -kMaxMagnitude, double hi = kMaxMagnitude) {
+    if (!j.is_number() || !(j.get<double>() >= lo && j.get<double>() <= hi)) return false;
+    out = j.get<double>();
     return true;
 }
+bool vec3(const json& j, V3& out, double lo = -kMaxMagnitude) {
+    V3 v;
+    if (!j.is_array() || j.size() != 3) return false;
+    for (size_t i = 0; i < 3; ++i)
+        if (!number(j[i], v[i], lo)) return false;
+    out = v;
+    return true;
+}
+bool colour(const json& j, V3& out) { return vec3(j, out, 0); }
 
 // A triangle list read from one POSITION accessor and one indices accessor.
 struct Geometry {
@@ -166,8 +175,9 @@ private:
             for (size_t k = 0; k < 3; ++k) {
                 float f;
                 std::memcpy(&f, v.data + i * v.stride + 4 * k, 4);
-                if (!std::isfinite(f))
-                    fail("/accessors/" + std::to_string(index), "vertex " + std::to_string(i) + " is not finite");
+                if (!(std::fabs(f) <= kMaxMagnitude))  // the loader's bound (rt/loader/scene_desc.h)
+                    fail("/accessors/" + std::to_string(index),
+                         "element " + std::to_string(i) + " is not a finite number within +-1e30");
                 out[3 * i + k] = f;
             }
         return out;
@@ -508,10 +518,9 @@ private:
         if (extras.contains("sphere") && n >= 4) {
             const json& s = extras["sphere"];
             V3 c;
-            if (!s.is_object() || !vec3(s.value("center", json()), c) || !s.value("radius", json()).is_number())
+            double r;
+            if (!s.is_object() || !vec3(s.value("center", json()), c) || !number(s.value("radius", json()), r, 1e-30))
                 return false;
-            const double r = s["radius"].get<double>();
-            if (!(r > 0) || !std::isfinite(r)) return false;
             for (size_t i = 0; i < n; ++i)
                 if (std::fabs(norm(sub({g.positions[3 * i], g.positions[3 * i + 1], g.positions[3 * i + 2]}, c)) - r) >
                     1e-4 * r)
@@ -580,14 +589,18 @@ private:
             warn(lp + ": a " + l.type + " light: only point lights are in the format; skipped");
             return;
         }
-        V3 colour{1, 1, 1};
-        if (l.color.size() == 3) colour = {l.color[0], l.color[1], l.color[2]};
+        V3 tint{1, 1, 1};
+        if (l.color.size() == 3) tint = {l.color[0], l.color[1], l.color[2]};
         V3 intensity;
-        for (size_t k = 0; k < 3; ++k) intensity[k] = colour[k] * l.intensity * options_.light_scale;
+        for (size_t k = 0; k < 3; ++k) {
+            intensity[k] = tint[k] * l.intensity * options_.light_scale;
+            if (!(intensity[k] >= 0 && intensity[k] <= kMaxMagnitude))
+                fail(lp, "its color times its intensity (times --light-scale) must be a number from 0 to 1e30");
+        }
         // The export's exact intensity, while the light still gives it.
         const json extras = ours(l.extras);
         V3 exact;
-        if (extras.is_object() && vec3(extras.value("intensity", json()), exact)) {
+        if (extras.is_object() && colour(extras.value("intensity", json()), exact)) {
             bool same = true;
             const double peak = std::max({exact[0], exact[1], exact[2], 1e-300});
             for (size_t k = 0; k < 3; ++k) same = same && std::fabs(exact[k] - intensity[k]) <= 1e-4 * peak;
@@ -677,25 +690,31 @@ private:
         const json extras = ours(model_.nodes[size_t(u.node)].extras);
         const json e = extras.is_object() ? extras.value("camera", json()) : json();
         V3 ep, eg, eu;
-        if (e.is_object() && vec3(e.value("position", json()), ep) && vec3(e.value("gaze", json()), eg) &&
-            vec3(e.value("up", json()), eu) && e.value("nearPlane", json()).is_array() && e["nearPlane"].size() == 4 &&
-            e.value("nearDistance", json()).is_number() && e.value("imageResolution", json()).is_array() &&
-            e["imageResolution"].size() == 2 && e.value("imageName", json()).is_string()) {
+        std::array<double, 4> ep4;
+        double ed, ew, eh;
+        const json none;
+        const json& np = e.is_object() ? e.value("nearPlane", none) : none;
+        const json& er = e.is_object() ? e.value("imageResolution", none) : none;
+        if (e.is_object() && vec3(e.value("position", none), ep) && vec3(e.value("gaze", none), eg) &&
+            vec3(e.value("up", none), eu) && norm(eg) > 0 && norm(eu) > 0 && np.is_array() && np.size() == 4 &&
+            number(np[0], ep4[0]) && number(np[1], ep4[1]) && number(np[2], ep4[2]) && number(np[3], ep4[3]) &&
+            ep4[0] < ep4[1] && ep4[2] < ep4[3] && number(e.value("nearDistance", none), ed, 1e-30) && er.is_array() &&
+            er.size() == 2 && er[0].is_number_integer() && er[1].is_number_integer() && number(er[0], ew, 1, 16384) &&
+            number(er[1], eh, 1, 16384) && e.value("imageName", none).is_string() &&
+            !e["imageName"].get<std::string>().empty()) {
             const double scale = std::max(1.0, norm(ep));
             const double eg_len = norm(eg), eu_len = norm(eu);
             const double cos_g = (eg[0] * gaze[0] + eg[1] * gaze[1] + eg[2] * gaze[2]) / eg_len;
-            const double ed = e["nearDistance"].get<double>();
-            const double etop = e["nearPlane"][3].get<double>(), ebottom = e["nearPlane"][2].get<double>();
-            const double eyfov = std::atan(etop / ed) - std::atan(ebottom / ed);
+            const double eyfov = std::atan(ep4[3] / ed) - std::atan(ep4[2] / ed);
             // The up vector only has to lie in the same half-plane about the gaze.
             const double cos_u = (eu[0] * up[0] + eu[1] * up[1] + eu[2] * up[2]) / eu_len;
             if (norm(sub(ep, pos)) <= 1e-5 * scale && cos_g > 1 - 1e-8 && cos_u > 0 &&
                 std::fabs(eyfov - yfov) <= 1e-5 * yfov && !options_.size_given) {
                 pos = ep, gaze = eg, up = eu;
-                for (size_t k = 0; k < 4; ++k) plane[k] = e["nearPlane"][k].get<double>();
+                plane = ep4;
                 distance = ed;
-                width = e["imageResolution"][0].get<int>();
-                height = e["imageResolution"][1].get<int>();
+                width = int(ew);
+                height = int(eh);
                 if (options_.image_name.empty()) name = e["imageName"].get<std::string>();
             }
         }
@@ -719,7 +738,7 @@ private:
         ojson l = ojson::object();
         V3 ambient{0, 0, 0};
         const bool have_ambient =
-            scene_extras_.is_object() && vec3(scene_extras_.value("ambientLight", json()), ambient);
+            scene_extras_.is_object() && colour(scene_extras_.value("ambientLight", json()), ambient);
         if (lights_.empty()) {
             l = frame(options_.width, options_.height, "").lights;
             if (have_ambient) l["AmbientLight"] = course_vec(ambient);
@@ -733,20 +752,20 @@ private:
 
     void scene_settings(ojson& scene) {
         const json& e = scene_extras_;
+        const json none;
         V3 background{40, 44, 56};
-        if (e.is_object()) vec3(e.value("backgroundColor", json()), background);
+        if (e.is_object()) colour(e.value("backgroundColor", none), background);
         scene["BackgroundColor"] = course_vec(background);
         const double radius = bounds_empty() ? 1.0 : frame(1, 1, "").radius;
-        double shadow = 1e-4 * radius;
-        if (e.is_object() && e.value("shadowRayEpsilon", json()).is_number())
-            shadow = e["shadowRayEpsilon"].get<double>();
+        double shadow = 1e-4 * radius, intersection;
+        if (e.is_object()) number(e.value("shadowRayEpsilon", none), shadow, 0);
         scene["ShadowRayEpsilon"] = course_number(shadow);
-        if (e.is_object() && e.value("intersectionTestEpsilon", json()).is_number())
-            scene["IntersectionTestEpsilon"] = course_number(e["intersectionTestEpsilon"].get<double>());
-        int depth = 6;
-        if (e.is_object() && e.value("maxRecursionDepth", json()).is_number_integer())
-            depth = e["maxRecursionDepth"].get<int>();
-        scene["MaxRecursionDepth"] = std::to_string(depth);
+        if (e.is_object() && number(e.value("intersectionTestEpsilon", none), intersection, 0))
+            scene["IntersectionTestEpsilon"] = course_number(intersection);
+        double depth = 6;
+        if (e.is_object() && e.value("maxRecursionDepth", none).is_number_integer())
+            number(e["maxRecursionDepth"], depth, 0, 10000);
+        scene["MaxRecursionDepth"] = std::to_string(int(depth));
     }
 
     PbrMaterial pbr(const tinygltf::Material& m, const std::string& mp) {

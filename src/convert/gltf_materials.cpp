@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "rt/loader/scene_desc.h"
 #include "scene_import.h"
 
 namespace rt {
@@ -148,7 +149,7 @@ bool material_from_extras(const nlohmann::json& j, MaterialDesc& m) {
         const auto it = j.find(key);
         if (it == j.end() || !it->is_number()) return false;
         const double v = it->get<double>();
-        if (!std::isfinite(v) || v < lo) return false;
+        if (!(v >= lo && v <= kMaxMagnitude)) return false;
         out = Real(v);
         return true;
     };
@@ -158,7 +159,7 @@ bool material_from_extras(const nlohmann::json& j, MaterialDesc& m) {
         for (int i = 0; i < 3; ++i) {
             if (!(*it)[size_t(i)].is_number()) return false;
             const double v = (*it)[size_t(i)].get<double>();
-            if (!std::isfinite(v) || v < 0) return false;
+            if (!(v >= 0 && v <= kMaxMagnitude)) return false;
             out[i] = Real(v);
         }
         return true;

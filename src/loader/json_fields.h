@@ -11,12 +11,9 @@
 #include <vector>
 
 #include "rt/core/math.h"
+#include "rt/loader/scene_desc.h"
 
 namespace rt {
-
-// Every number in a scene (and every PLY coordinate) must lie within +-1e30: the BVH
-// keeps its boxes in float (max ~3.4e38), and squared distances must stay finite.
-constexpr double kMaxMagnitude = 1e30;
 
 class JsonFields {
 public:

@@ -31,8 +31,9 @@ struct ConvertOptions {
     // glTF point light gives a white diffuse surface where Blender renders it 0..1
     double light_scale = 255 / (683 * 3.141592653589793);
     // scene -> OBJ or glTF export: a sphere becomes a UV sphere of this many segments
-    // around and half as many rings
-    int sphere_segments = 48;
+    // around and half as many rings (128: within 0.5% of the exact sphere's pixels in the
+    // official scenes, docs/gltf.md)
+    int sphere_segments = 128;
 };
 
 struct ConvertResult {
@@ -62,7 +63,7 @@ std::string json_to_xml_text(const std::string& json_text, const std::string& pa
 struct ObjText {
     std::string obj, mtl;
 };
-ObjText scene_to_obj(const SceneDesc& scene, const std::string& mtl_file_name, int sphere_segments = 48);
+ObjText scene_to_obj(const SceneDesc& scene, const std::string& mtl_file_name, int sphere_segments = 128);
 
 // What the exports make polygons with (rt/shapes/shape.h): the scene's centre and extent
 // (planes become squares 10x its extent) and the segments of a tessellated sphere.

@@ -14,6 +14,10 @@
 
 namespace rt {
 
+// Every number in a scene (and every PLY coordinate) must lie within +-1e30: the BVH
+// keeps its boxes in float (max ~3.4e38), and squared distances must stay finite.
+constexpr double kMaxMagnitude = 1e30;
+
 struct CameraDesc {
     Vec3 position, gaze, up;                          // gaze is a direction (lookAt cameras: GazePoint - Position)
     Real left = -1, right = 1, bottom = -1, top = 1;  // near plane extents

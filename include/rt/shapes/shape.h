@@ -74,7 +74,7 @@ struct Polygons {
 // tessellated curved surface, and the scene's centre and extent (the size of a quad
 // that stands for an infinite plane).
 struct ExportFrame {
-    int segments = 48;
+    int segments = 128;
     Vec3 center;
     Real extent = 1;
     const std::vector<MeshDesc>* meshes = nullptr;  // the scene's, for instances
