@@ -10,6 +10,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -167,12 +169,16 @@ TEST(GltfMaterials, ExportTableByHand) {
     EXPECT_DOUBLE_EQ(g.attenuation[2], std::exp(-2.0));
 }
 
+rt::PbrMaterial pbr(std::array<double, 3> base, double metallic, double roughness) {
+    rt::PbrMaterial p;
+    std::copy(base.begin(), base.end(), p.base);
+    p.metallic = metallic;
+    p.roughness = roughness;
+    return p;
+}
+
 TEST(GltfMaterials, ImportTableByHand) {
-    rt::PbrMaterial gold;
-    gold.base[0] = 1, gold.base[1] = 0.8, gold.base[2] = 0.3;
-    gold.metallic = 1;
-    gold.roughness = 0.5;
-    const rt::MaterialDesc m = rt::material_of(gold);
+    const rt::MaterialDesc m = rt::material_of(pbr({1, 0.8, 0.3}, 1, 0.5));  // gold
     EXPECT_EQ(m.type, rt::MaterialType::Conductor);
     EXPECT_TRUE(same(m.mirror, {1, 0.8, 0.3}));
     EXPECT_EQ(m.refraction_index, 1);
@@ -194,11 +200,7 @@ TEST(GltfMaterials, ImportTableByHand) {
     EXPECT_EQ(g.absorption_coefficient.y, 0);
     EXPECT_TRUE(same(g.diffuse, {0, 0, 0}));
 
-    rt::PbrMaterial red;
-    red.base[0] = 0.8, red.base[1] = 0.1, red.base[2] = 0.1;
-    red.metallic = 0;
-    red.roughness = 1;
-    const rt::MaterialDesc r = rt::material_of(red);
+    const rt::MaterialDesc r = rt::material_of(pbr({0.8, 0.1, 0.1}, 0, 1));  // red, fully rough
     EXPECT_EQ(r.type, rt::MaterialType::Plain);
     EXPECT_TRUE(same(r.diffuse, {0.8, 0.1, 0.1}));
     EXPECT_TRUE(same(r.ambient, r.diffuse));

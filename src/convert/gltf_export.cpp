@@ -136,8 +136,6 @@ std::vector<uint32_t> triangles_of(const Polygons& poly) {
     return out;
 }
 
-tinygltf::Value extras_of(const json& ceng795) { return to_value(json{{kGltfExtrasKey, ceng795}}); }
-
 // A row-major affine as glTF's column-major 4x4; none for the identity.
 std::vector<double> node_matrix(const Affine& m) {
     if (m.is_identity()) return {};
@@ -186,11 +184,11 @@ public:
         model_.defaultScene = 0;
         tinygltf::Scene& s = model_.scenes[0];
         s.name = scene_.path;
-        s.extras = extras_of({{"backgroundColor", arr(scene_.background)},
-                              {"shadowRayEpsilon", double(scene_.shadow_ray_epsilon)},
-                              {"intersectionTestEpsilon", double(scene_.intersection_test_epsilon)},
-                              {"maxRecursionDepth", scene_.max_recursion_depth},
-                              {"ambientLight", arr(scene_.ambient_light)}});
+        s.extras = ours_as_extras({{"backgroundColor", arr(scene_.background)},
+                                   {"shadowRayEpsilon", double(scene_.shadow_ray_epsilon)},
+                                   {"intersectionTestEpsilon", double(scene_.intersection_test_epsilon)},
+                                   {"maxRecursionDepth", scene_.max_recursion_depth},
+                                   {"ambientLight", arr(scene_.ambient_light)}});
         add_materials();
         add_meshes();
         add_shapes();
@@ -221,7 +219,7 @@ private:
                                   {"attenuationColor", {p.attenuation[0], p.attenuation[1], p.attenuation[2]}}});
                 }
             }
-            g.extras = extras_of(material_extras(m));
+            g.extras = ours_as_extras(material_extras(m));
             model_.materials.push_back(std::move(g));
         }
         if (transmission) model_.extensionsUsed.push_back("KHR_materials_transmission");
@@ -243,7 +241,7 @@ private:
         tinygltf::Mesh mesh;
         mesh.name = name;
         mesh.primitives.push_back(prim);
-        if (!g.extras.is_null()) mesh.extras = extras_of(g.extras);
+        if (!g.extras.is_null()) mesh.extras = ours_as_extras(g.extras);
         model_.meshes.push_back(std::move(mesh));
         meshes_[key] = int(model_.meshes.size() - 1);
         return meshes_[key];
@@ -323,14 +321,15 @@ private:
             n.camera = int(model_.cameras.size() - 1);
             n.translation = {double(c.position.x), double(c.position.y), double(c.position.z)};
             n.rotation = camera_rotation(c);
-            n.extras = extras_of({{"camera",
-                                   {{"position", arr(c.position)},
-                                    {"gaze", arr(c.gaze)},
-                                    {"up", arr(c.up)},
-                                    {"nearPlane", {double(c.left), double(c.right), double(c.bottom), double(c.top)}},
-                                    {"nearDistance", d},
-                                    {"imageResolution", {c.width, c.height}},
-                                    {"imageName", c.image_name}}}});
+            n.extras =
+                ours_as_extras({{"camera",
+                                 {{"position", arr(c.position)},
+                                  {"gaze", arr(c.gaze)},
+                                  {"up", arr(c.up)},
+                                  {"nearPlane", {double(c.left), double(c.right), double(c.bottom), double(c.top)}},
+                                  {"nearDistance", d},
+                                  {"imageResolution", {c.width, c.height}},
+                                  {"imageName", c.image_name}}}});
             model_.nodes.push_back(std::move(n));
         }
     }
@@ -345,7 +344,7 @@ private:
             g.color = peak > 0 ? std::vector<double>{l.intensity.x / peak, l.intensity.y / peak, l.intensity.z / peak}
                                : std::vector<double>{1, 1, 1};
             g.intensity = std::max(peak, 0.0) / options_.light_scale;
-            g.extras = extras_of({{"intensity", arr(l.intensity)}});
+            g.extras = ours_as_extras({{"intensity", arr(l.intensity)}});
             model_.lights.push_back(g);
             tinygltf::Node n;
             n.name = g.name;

@@ -60,6 +60,18 @@ struct ConvertResult;
 // The key of the extras the export writes and the import reads (docs/gltf.md).
 inline constexpr const char* kGltfExtrasKey = "ceng795";
 
+#ifndef RT_NO_GLTF
+// Our extras: `values` as the "ceng795" member of an element's extras (export), and that
+// member of an element's extras, or null (import).
+inline tinygltf::Value ours_as_extras(const nlohmann::json& values) {
+    return rtgltf::to_value(nlohmann::json{{kGltfExtrasKey, values}});
+}
+inline nlohmann::json ours_in(const tinygltf::Value& extras) {
+    const nlohmann::json j = rtgltf::to_json(extras);
+    return j.is_object() && j.contains(kGltfExtrasKey) ? j[kGltfExtrasKey] : nlohmann::json();
+}
+#endif
+
 // A loaded scene as a glTF file at `path` (.gltf + <stem>.bin, or .glb), each file written
 // atomically (gltf_export.cpp); the files written, `path` first.
 std::vector<std::string> write_gltf(const SceneDesc& scene, const std::string& path, const ConvertOptions& options,

@@ -1,0 +1,58 @@
+// Internal: glTF triangle primitives as the course's meshes (docs/gltf.md): accessors read
+// with every range checked, flat shading recognised by the normals, vertices other writers
+// split joined again, and the export's exact positions used while they still agree.
+#pragma once
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <cmath>
+#include <map>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "gltf_io.h"
+
+namespace rt {
+
+// A triangle list from one POSITION accessor and one indices accessor.
+struct GltfTriangles {
+    std::vector<double> positions;  // x y z per vertex
+    std::vector<uint32_t> indices;  // 3 per triangle, into positions / 3
+    bool smooth = false;            // _shadingMode smooth
+    std::array<double, 3> lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};  // the box
+};
+
+class GltfPrimitives {
+public:
+    // `path` names the file in errors and warnings (appended to `warnings`).
+    GltfPrimitives(const tinygltf::Model& model, const std::string& path, std::vector<std::string>& warnings)
+        : model_(model), path_(path), warnings_(warnings) {}
+
+    // Primitive p of mesh m, read once per accessor pair: every primitive showing the same
+    // accessors gets the same pointer. nullptr for a primitive that is skipped, with a
+    // warning (not a triangle list, no POSITION). Throws rt::InputError naming the element
+    // for anything malformed.
+    const GltfTriangles* get(int m, int p);
+
+private:
+    [[noreturn]] void fail(const std::string& element, const std::string& what) const;
+    void warn(const std::string& what) { warnings_.push_back(path_ + ": " + what); }
+
+    struct View {
+        const unsigned char* data = nullptr;  // null: all zeros (no bufferView)
+        size_t stride = 0, count = 0;
+    };
+    View view(int index, int component, int type, const std::string& where) const;
+    std::vector<double> floats3(int index, const std::string& where) const;
+    std::vector<uint32_t> indices(int index, size_t vertices, const std::string& where) const;
+
+    const tinygltf::Model& model_;
+    const std::string& path_;
+    std::vector<std::string>& warnings_;
+    std::map<std::pair<int, int>, GltfTriangles> read_;  // (POSITION, indices) -> triangles
+    std::set<std::string> skipped_;
+};
+
+}  // namespace rt
