@@ -2,7 +2,7 @@
 #
 #   make check-asan    unit/CLI tests and a few renders under AddressSanitizer and
 #                      UndefinedBehaviorSanitizer (g++), in build/asan
-#   make fuzz          libFuzzer targets for the scene loader and the PLY reader
+#   make fuzz          libFuzzer targets for the scene loader, the PLY reader and the glTF import
 #                      (clang-14 + libclang-rt-14-dev), FUZZ_SECONDS each, in build/fuzz;
 #                      the corpus grows in build/fuzz/corpus, crashes land in build/fuzz/artifacts
 #   make fuzz-build    just build the fuzz targets
@@ -83,11 +83,12 @@ FUZZ_CXX      ?= clang++-14
 FUZZ_SECONDS  ?= 60
 FUZZ_FLAGS    := -O1 -g -march=native -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all $(CHECK_WARN)
 FUZZ_LIB_OBJ  := $(LIB_SRC:%.cpp=$(FUZZ_DIR)/%.o)
-FUZZ_TARGETS  := scene ply
+FUZZ_TARGETS  := scene ply gltf
 FUZZ_ENV      := ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 # Per-target libFuzzer options: input size limits and dictionaries.
 FUZZ_OPTS_scene := -max_len=16384 -dict=tests/fuzz/scene.dict
 FUZZ_OPTS_ply   := -max_len=4096 -dict=tests/fuzz/ply.dict
+FUZZ_OPTS_gltf  := -max_len=16384
 
 $(FUZZ_DIR)/%.o: %.cpp
 	@mkdir -p $(dir $@)
@@ -103,9 +104,10 @@ fuzz-build: $(FUZZ_TARGETS:%=$(FUZZ_DIR)/fuzz_%)
 # Seed corpus: our own files (tests/fuzz/seeds, scenes/, the regression inputs) and,
 # when present, the course's small scenes and PLY files. Existing corpus entries stay.
 fuzz-corpus:
-	@mkdir -p $(FUZZ_DIR)/corpus/scene $(FUZZ_DIR)/corpus/ply $(FUZZ_DIR)/artifacts
+	@mkdir -p $(FUZZ_DIR)/corpus/scene $(FUZZ_DIR)/corpus/ply $(FUZZ_DIR)/corpus/gltf $(FUZZ_DIR)/artifacts
 	@cp tests/fuzz/seeds/scene/* scenes/*.json $(FUZZ_DIR)/corpus/scene/
 	@cp tests/fuzz/seeds/ply/* $(FUZZ_DIR)/corpus/ply/
+	@cp tests/fuzz/seeds/gltf/* $(FUZZ_DIR)/corpus/gltf/
 	@for f in tests/fuzz/regressions/scene/* ; do [ -f "$$f" ] && cp "$$f" $(FUZZ_DIR)/corpus/scene/ ; done ; true
 	@for f in tests/fuzz/regressions/ply/* ; do [ -f "$$f" ] && cp "$$f" $(FUZZ_DIR)/corpus/ply/ ; done ; true
 	@if [ -n "$(CHECK_SHARED)" ]; then \

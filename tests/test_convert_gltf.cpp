@@ -325,6 +325,23 @@ TEST(GltfImport, WithoutCameraOrLightsTheModelIsFramedAndLit) {
     EXPECT_NEAR(dot(normalize(to_centre), normalize(im.scene.cameras[0].gaze)), 1, 1e-12);
 }
 
+TEST(GltfImport, InMemoryTheSameTreeButTheMeshNames) {
+    TempDir tmp;
+    GltfFile f;
+    const int mesh = f.mesh(kTriangle, {0, 1, 2});
+    f.node({{"mesh", mesh}, {"translation", {1, 2, 3}}});
+    f.node({{"mesh", mesh}});
+    const std::string path = f.write(tmp);
+    std::ifstream in(path);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    json text = json::parse(rt::gltf_to_json_text(bytes, path));
+    const Imported im = import(tmp, path);
+    EXPECT_EQ(text["Scene"]["Objects"]["Mesh"][0]["Faces"]["_plyFile"], "mesh_1.ply");
+    text["Scene"]["Objects"]["Mesh"][0]["Faces"]["_plyFile"] = "out_1.ply";
+    text["Scene"]["Cameras"]["Camera"][0]["ImageName"] = "out.png";
+    EXPECT_EQ(text, im.tree);
+}
+
 TEST(GltfImport, NonTrianglePrimitivesAreSkippedWithAWarning) {
     TempDir tmp;
     GltfFile f;

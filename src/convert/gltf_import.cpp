@@ -652,13 +652,12 @@ private:
 
 }  // namespace
 
-SceneImport import_gltf(const std::string& path, const ConvertOptions& options, const std::string& ply_prefix) {
+SceneImport import_gltf_bytes(const std::string& bytes, const std::string& path, const std::string& base_dir,
+                              const ConvertOptions& options, const std::string& ply_prefix) {
     SceneImport out;
     tinygltf::Model model;
-    const std::string bytes = read_text_file(path);
-    const std::string dir = dirname_of(path);
     try {
-        rtgltf::parse(bytes, path, dir.empty() ? "." : dir, model, out.warnings);
+        rtgltf::parse(bytes, path, base_dir, model, out.warnings);
     } catch (const rtgltf::Error& e) {
         throw InputError(e.what());
     }
@@ -666,9 +665,22 @@ SceneImport import_gltf(const std::string& path, const ConvertOptions& options, 
     return out;
 }
 #else
-SceneImport import_gltf(const std::string& path, const ConvertOptions&, const std::string&) {
+SceneImport import_gltf_bytes(const std::string&, const std::string& path, const std::string&, const ConvertOptions&,
+                              const std::string&) {
     throw InputError(path + ": glTF is not supported by this build (it was made without tinygltf, libtinygltf-dev)");
 }
 #endif  // RT_NO_GLTF
+
+SceneImport import_gltf(const std::string& path, const ConvertOptions& options, const std::string& ply_prefix) {
+    const std::string bytes = read_text_file(path);
+    const std::string dir = dirname_of(path);
+    return import_gltf_bytes(bytes, path, dir.empty() ? "." : dir, options, ply_prefix);
+}
+
+std::string gltf_to_json_text(const std::string& gltf_bytes, const std::string& path, const ConvertOptions& options) {
+    return import_gltf_bytes(gltf_bytes, path, dirname_of(path).empty() ? "." : dirname_of(path), options, "mesh")
+               .scene.dump(2) +
+           "\n";
+}
 
 }  // namespace rt

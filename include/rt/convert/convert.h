@@ -57,6 +57,10 @@ ConvertResult convert_file(const std::string& input, const std::string& output, 
 // In-memory versions of the XML <-> JSON conversions; `path` names the input in errors.
 std::string xml_to_json_text(const std::string& xml_text, const std::string& path);  // 2-space JSON
 std::string json_to_xml_text(const std::string& json_text, const std::string& path);
+// glTF (the bytes of a .gltf or .glb, external buffers beside `path`) -> the scene's JSON
+// text; its meshes are named (mesh_1.ply, ...), not written.
+std::string gltf_to_json_text(const std::string& gltf_bytes, const std::string& path,
+                              const ConvertOptions& options = {});
 
 // A loaded scene as OBJ + MTL text: meshes as they are, spheres tessellated, planes as
 // large quads (10x the scene's extent), one MTL material per scene material.
