@@ -43,7 +43,16 @@ void release_free_memory() noexcept {
 
 }  // namespace rt
 
-#if !defined(RT_REAL_FLOAT) && !defined(__SANITIZE_ADDRESS__) && !defined(__EMSCRIPTEN__)
+// g++ says AddressSanitizer by __SANITIZE_ADDRESS__, clang (make fuzz) by __has_feature.
+#if defined(__SANITIZE_ADDRESS__)
+#define RT_UNDER_ASAN 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define RT_UNDER_ASAN 1
+#endif
+#endif
+
+#if !defined(RT_REAL_FLOAT) && !defined(RT_UNDER_ASAN) && !defined(__EMSCRIPTEN__)
 // The global operator new, replaced (C++17 [new.delete.single]) by one that takes its
 // memory from allocate_bytes: every std::vector, string and new-expression of the
 // program gets huge pages when it is large. libstdc++'s other forms (new[], nothrow)
