@@ -114,8 +114,6 @@ std::string error_of(const std::string& in, const std::string& out) {
     return "";
 }
 
-bool near(double a, double b, double tol = 1e-12) { return std::fabs(a - b) <= tol; }
-
 bool any_contains(const std::vector<std::string>& lines, const std::string& part) {
     for (const std::string& l : lines)
         if (contains(l, part)) return true;

@@ -39,8 +39,6 @@ V3 apply(const Affine& m, const V3& p, bool point) {
         out[size_t(r)] = m.m[r][0] * p[0] + m.m[r][1] * p[1] + m.m[r][2] * p[2] + (point ? m.m[r][3] : 0.0);
     return out;
 }
-double norm(const V3& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
-V3 sub(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
 
 // Extras are read only when they hold what the loader accepts (numbers within +-1e30,
 // colours not negative); `out` is left alone otherwise.
@@ -652,12 +650,13 @@ private:
 
 }  // namespace
 
-SceneImport import_gltf_bytes(const std::string& bytes, const std::string& path, const std::string& base_dir,
-                              const ConvertOptions& options, const std::string& ply_prefix) {
+SceneImport import_gltf_bytes(const std::string& bytes, const std::string& path, const ConvertOptions& options,
+                              const std::string& ply_prefix) {
     SceneImport out;
     tinygltf::Model model;
+    const std::string dir = dirname_of(path);
     try {
-        rtgltf::parse(bytes, path, base_dir, model, out.warnings);
+        rtgltf::parse(bytes, path, dir.empty() ? "." : dir, model, out.warnings);
     } catch (const rtgltf::Error& e) {
         throw InputError(e.what());
     }
@@ -665,22 +664,17 @@ SceneImport import_gltf_bytes(const std::string& bytes, const std::string& path,
     return out;
 }
 #else
-SceneImport import_gltf_bytes(const std::string&, const std::string& path, const std::string&, const ConvertOptions&,
-                              const std::string&) {
+SceneImport import_gltf_bytes(const std::string&, const std::string& path, const ConvertOptions&, const std::string&) {
     throw InputError(path + ": glTF is not supported by this build (it was made without tinygltf, libtinygltf-dev)");
 }
 #endif  // RT_NO_GLTF
 
 SceneImport import_gltf(const std::string& path, const ConvertOptions& options, const std::string& ply_prefix) {
-    const std::string bytes = read_text_file(path);
-    const std::string dir = dirname_of(path);
-    return import_gltf_bytes(bytes, path, dir.empty() ? "." : dir, options, ply_prefix);
+    return import_gltf_bytes(read_text_file(path), path, options, ply_prefix);
 }
 
 std::string gltf_to_json_text(const std::string& gltf_bytes, const std::string& path, const ConvertOptions& options) {
-    return import_gltf_bytes(gltf_bytes, path, dirname_of(path).empty() ? "." : dirname_of(path), options, "mesh")
-               .scene.dump(2) +
-           "\n";
+    return import_gltf_bytes(gltf_bytes, path, options, "mesh").scene.dump(2) + "\n";
 }
 
 }  // namespace rt

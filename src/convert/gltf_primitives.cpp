@@ -13,9 +13,6 @@ namespace {
 using json = nlohmann::json;
 using V3 = std::array<double, 3>;
 
-double norm(const V3& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
-V3 sub(const V3& a, const V3& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-
 // Whether every corner's normal is its triangle's own: a flat-shaded mesh as modelling
 // tools write it (vertices split where faces meet), drawn flat (docs/gltf.md).
 bool flat_normals(const GltfTriangles& g, const std::vector<double>& normals) {

@@ -16,6 +16,12 @@
 
 namespace rt {
 
+// The length of v, and a - b: the import keeps glTF's coordinates in double, whatever Real is.
+inline double norm(const std::array<double, 3>& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
+inline std::array<double, 3> sub(const std::array<double, 3>& a, const std::array<double, 3>& b) {
+    return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+
 // A triangle list from one POSITION accessor and one indices accessor.
 struct GltfTriangles {
     std::vector<double> positions;  // x y z per vertex

@@ -40,9 +40,10 @@ SceneImport import_obj(const std::string& obj_path, const ConvertOptions& option
 // docs/gltf.md. Throws rt::InputError "<file>: <element>: <what>", the element a JSON
 // pointer into the glTF (/meshes/2/primitives/0), for anything it cannot convert.
 SceneImport import_gltf(const std::string& path, const ConvertOptions& options, const std::string& ply_prefix);
-// The same of a glTF's bytes, read from `path` (for messages); external buffers from `base_dir`.
-SceneImport import_gltf_bytes(const std::string& bytes, const std::string& path, const std::string& base_dir,
-                              const ConvertOptions& options, const std::string& ply_prefix);
+// The same of a glTF's bytes, read from `path` (named in messages; external buffers are
+// read from its folder).
+SceneImport import_gltf_bytes(const std::string& bytes, const std::string& path, const ConvertOptions& options,
+                              const std::string& ply_prefix);
 
 // ---- Shared by the importers ---------------------------------------------------------
 
