@@ -36,12 +36,13 @@ bench-quick: raytracer $(BENCH_GEN)
 BVH_BENCH := build/bench/bvh_bench
 BVH_BENCH_FLOAT := build/bench/bvh_bench_float
 BVH_SCENE ?= build/bench/scenes/knot_4m_plain.json
-$(BVH_BENCH): tests/bench/bvh_bench.cpp $(BUILD)/librt.a
+# Built against the copy the tests use (TEST_ISA: this CPU's best level).
+$(BVH_BENCH): tests/bench/bvh_bench.cpp $(TEST_BUILD)/librt.a $(TEST_ONCE)
 	@mkdir -p $(dir $@)
-	$(CXX) $(CPPFLAGS) $(CXXFLAGS) -o $@ $< $(BUILD)/librt.a $(LDLIBS)
-$(BVH_BENCH_FLOAT): tests/bench/bvh_bench.cpp $(BUILD)/librt_float.a $(BUILD)/librt.a
+	$(CXX) $(CPPFLAGS) $(ISA_DOUBLE_$(TEST_ISA)) $(CXXFLAGS) $(ISA_FLAGS_$(TEST_ISA)) -o $@ $^ $(LDLIBS)
+$(BVH_BENCH_FLOAT): tests/bench/bvh_bench.cpp $(TEST_BUILD)/librt_float.a $(TEST_BUILD)/librt.a $(TEST_ONCE)
 	@mkdir -p $(dir $@)
-	$(CXX) $(CPPFLAGS) $(FLOAT_CPPFLAGS) $(CXXFLAGS) -o $@ $< $(BUILD)/librt_float.a $(BUILD)/librt.a $(LDLIBS)
+	$(CXX) $(CPPFLAGS) $(ISA_FLOAT_$(TEST_ISA)) $(CXXFLAGS) $(ISA_FLAGS_$(TEST_ISA)) -o $@ $^ $(LDLIBS)
 
 .PHONY: bench-bvh
 bench-bvh: $(BVH_BENCH) $(BVH_BENCH_FLOAT)

@@ -3,8 +3,8 @@
 # libdeflate, about 4 ms a run, which the 19 official scene files pay 19 times. A probe
 # links an empty program with -static and ./raytracer's libraries; without their static
 # archives (the tarball on a machine with only g++, say) it is linked dynamically, as
-# before. Native builds only: a static libc brings its AVX variants of memcpy and the
-# like, and the MARCH=x86-64 program must hold no AVX instruction (mk/march.mk).
+# before. A static libc still picks its memcpy and the like for the CPU it runs on
+# (IFUNC), so the binary runs on any x86-64 CPU either way (mk/march.mk checks it).
 # `make RT_STATIC=` links dynamically. Included after mk/convert.mk and mk/png.mk, which
 # add the libraries.
 
@@ -12,9 +12,6 @@
 # without a static archive, is not linked into it.
 RAYTRACER_LDLIBS := $(filter-out -ltinyobjloader_double,$(LDLIBS))
 ifeq ($(origin RT_STATIC),undefined)
-  RT_STATIC :=
-  ifeq ($(MARCH),native)
-    RT_STATIC := $(shell printf 'int main() {}\n' | $(CXX) -x c++ - -static -o /dev/null $(RAYTRACER_LDLIBS) \
-                   2>/dev/null && echo -static)
-  endif
+  RT_STATIC := $(shell printf 'int main() {}\n' | $(CXX) -x c++ - -static -o /dev/null $(RAYTRACER_LDLIBS) \
+                 2>/dev/null && echo -static)
 endif

@@ -1,39 +1,85 @@
-// raytracer: runs the double or the float copy of the program (rt/app/program.h), as
-// --precision says; that copy parses and checks every option, this one included.
-// Built with RT_NO_FLOAT (make PRECISIONS=double), the program holds the double copy only
-// and refuses --precision float with one error line, exit status 2 (a usage error).
+// raytracer: runs one copy of the program (rt/app/program.h): the precision --precision
+// asks for, built for the instruction-set level --isa (or the environment's RT_ISA) names,
+// by default the best this CPU executes (rt/cli/isa.h). The copy parses and checks every
+// option, these included. The Makefile says which copies there are: RT_PRIMARY_ISA (in
+// namespaces rt and rt_float), RT_WITH_AVX2 and RT_WITH_AVX512; RT_NO_FLOAT (make
+// PRECISIONS=double) leaves float out, and --precision float is then refused (exit 2).
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
+#include <stdexcept>
+#include <string>
 
 #include "rt/app/program.h"
+#include "rt/cli/isa.h"
+
+#ifndef RT_PRIMARY_ISA
+#define RT_PRIMARY_ISA "native"
+#endif
+#ifdef RT_NO_FLOAT
+#define RT_FLOAT_COPY(f) nullptr
+#else
+#define RT_FLOAT_COPY(f) f
+#endif
 
 namespace {
 
-// True when the last --precision on the command line (before a "--") asks for float.
-// Anything else, a bad value included, goes to the double copy, whose parser reports it.
-bool wants_float(int argc, char** argv) {
-    bool f = false;
+using Program = int (*)(int, char**);
+struct Copy {
+    std::string isa;
+    Program run_double, run_float;
+};
+const Copy kCopies[] = {
+    {RT_PRIMARY_ISA, rt::raytracer_cli, RT_FLOAT_COPY(rt_float::raytracer_cli)},
+#ifdef RT_WITH_AVX2
+    {"avx2", rt_avx2::raytracer_cli, RT_FLOAT_COPY(rt_float_avx2::raytracer_cli)},
+#endif
+#ifdef RT_WITH_AVX512
+    {"avx512", rt_avx512::raytracer_cli, RT_FLOAT_COPY(rt_float_avx512::raytracer_cli)},
+#endif
+};
+constexpr int kCount = sizeof kCopies / sizeof kCopies[0];
+
+// The value of the last `--name V` or `--name=V` before a "--"; `fallback` without one.
+// A bad value is left to the copy's parser (precision) or reported below (isa).
+std::string last_value(int argc, char** argv, const char* name, std::string fallback) {
+    const size_t n = std::strlen(name);
     for (int i = 1; i < argc; ++i) {
         const char* a = argv[i];
         if (std::strcmp(a, "--") == 0) break;
-        if (std::strcmp(a, "--precision") == 0 && i + 1 < argc)
-            f = std::strcmp(argv[++i], "float") == 0;
-        else if (std::strncmp(a, "--precision=", 12) == 0)
-            f = std::strcmp(a + 12, "float") == 0;
+        if (std::strcmp(a, name) == 0 && i + 1 < argc)
+            fallback = argv[++i];
+        else if (std::strncmp(a, name, n) == 0 && a[n] == '=')
+            fallback = a + n + 1;
     }
-    return f;
+    return fallback;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (!wants_float(argc, argv)) return rt::raytracer_cli(argc, argv);
-#ifdef RT_NO_FLOAT
-    std::fprintf(stderr,
-                 "error: --precision float: this build has no float precision; "
-                 "build it with make PRECISIONS=\"double float\"\n");
-    return 2;
-#else
-    return rt_float::raytracer_cli(argc, argv);
-#endif
+    const char* env = std::getenv("RT_ISA");
+    const std::string from_env = env ? env : "";
+    const std::string asked = last_value(argc, argv, "--isa", from_env);
+    std::string built[kCount];
+    for (int i = 0; i < kCount; ++i) built[i] = kCopies[i].isa;
+    std::string isa;
+    try {
+        isa = rtcli::choose_isa(asked, built, kCount);
+    } catch (const std::invalid_argument& e) {
+        const bool by_option = last_value(argc, argv, "--isa", "\x01") != "\x01";
+        std::fprintf(stderr, "error: %s%s\n", by_option ? "--isa " : "RT_ISA=", e.what());
+        return 2;
+    }
+    const Copy* copy = kCopies;
+    for (const Copy& c : kCopies)
+        if (c.isa == isa) copy = &c;
+    if (last_value(argc, argv, "--precision", "double") != "float") return copy->run_double(argc, argv);
+    if (!copy->run_float) {
+        std::fprintf(stderr,
+                     "error: --precision float: this build has no float precision; "
+                     "build it with make PRECISIONS=\"double float\"\n");
+        return 2;
+    }
+    return copy->run_float(argc, argv);
 }

@@ -139,7 +139,7 @@ TEST(Cli, UsageErrorsAreOneLinePlusTheUsage) {
     TempDir tmp;
     write_scene(tmp.path(), "scene.json", sample_scene());
     const std::string usage =
-        "usage: raytracer [-o DIR] [-j N] [--precision double|float] [--cull|--no-cull]\n"
+        "usage: raytracer [-o DIR] [-j N] [--precision double|float] [--isa LEVEL] [--cull|--no-cull]\n"
         "                 [--rounding truncate|nearest] [--min-weight W] [--stats FILE] [-q] [--strict]\n"
         "                 [--repeat N] [--max-depth N] [--epsilon-scale F] [--bvh-... (measurements)]\n"
         "                 [--frames A:B] [--shard K/N] scene.json|scene.xml...\n"
@@ -178,13 +178,14 @@ TEST(Cli, HelpNamesEveryOption) {
     ASSERT_EQ(r.exit_code, 0) << dump(r);
     EXPECT_EQ(r.err, "");
     for (const char* option :
-         {"-o, --output-dir DIR", "-j, --threads N", "--cull, --no-cull", "--rounding MODE",   "--stats FILE",
-          "-q, --quiet",          "-h, --help",      "--version",         "--max-depth N",     "--epsilon-scale F",
-          "--bvh-leaf N",         "--bvh-bins N",    "--bvh-split MODE",  "--bvh-cost F",      "--bvh-block N",
-          "--precision MODE",     "--trace X,Y",     "--camera N",        "--trace-json FILE", "exit status"})
+         {"-o, --output-dir DIR", "-j, --threads N", "--cull, --no-cull", "--rounding MODE", "--stats FILE",
+          "-q, --quiet",          "-h, --help",      "--version",         "--max-depth N",   "--epsilon-scale F",
+          "--bvh-leaf N",         "--bvh-bins N",    "--bvh-split MODE",  "--bvh-cost F",    "--bvh-block N",
+          "--precision MODE",     "--isa LEVEL",     "--trace X,Y",       "--camera N",      "--trace-json FILE",
+          "exit status"})
         EXPECT_TRUE(contains(r.out, option)) << option << dump(r);
     RunResult v = run_raytracer({"--version"});
-    EXPECT_EQ(v.out, "raytracer 1.0\n") << dump(v);
+    EXPECT_EQ(v.out, "raytracer 1.0 (" RT_ISA_NAME " kernels)\n") << dump(v);
 }
 
 // One program, two precisions: --precision picks the copy of the library that renders

@@ -6,6 +6,13 @@
 
 #include "rt/image/image.h"
 
+// The instruction-set level of the copy of the library these tests were compiled with
+// (Makefile, TEST_ISA), which make test has ./raytracer run too (RT_ISA); the sanitized
+// builds, outside the Makefile's copies, are "native".
+#ifndef RT_ISA_NAME
+#define RT_ISA_NAME "native"
+#endif
+
 // The course's shared files (scenes, references, spec): $RT_SHARED_DIR when set,
 // else ../shared relative to the current directory (tests run from the repo root),
 // as an absolute path; empty when the chosen folder does not exist.

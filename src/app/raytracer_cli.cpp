@@ -10,24 +10,35 @@
 
 #include "rt/app/program.h"
 #include "rt/app/run.h"
-#include "rt/cli/options.h"
+#include "rt/cli/parser.h"
 #include "rt/core/error.h"
 #include "rt/image/image.h"
 #include "rt/io/atomic_file.h"
 
+// The instruction-set level this copy was compiled for (Makefile, ISAS); a build outside
+// the Makefile's copies (the sanitized ones, say) is for the machine it was built on.
+#ifndef RT_ISA_NAME
+#define RT_ISA_NAME "native"
+#endif
+
 namespace rt {
 namespace {
 
-const cli::Program kProgram{
-    "raytracer", "raytracer 1.0",
-    "usage: raytracer [-o DIR] [-j N] [--precision double|float] [--cull|--no-cull]\n"
-    "                 [--rounding truncate|nearest] [--min-weight W] [--stats FILE] [-q] [--strict]\n"
-    "                 [--repeat N] [--max-depth N] [--epsilon-scale F] [--bvh-... (measurements)]\n"
-    "                 [--frames A:B] [--shard K/N] scene.json|scene.xml...\n"
-    "       raytracer --trace X,Y [--camera N] [--trace-json FILE] [options] scene.json|scene.xml",
-    "Renders every camera of each scene file (JSON, or the course's older XML format when the\n"
-    "name ends in .xml) to the image its ImageName names: PNG (.png) or binary PPM (.ppm).\n",
-    "exit status: 0 all images written, 1 bad input or an image could not be written, 2 usage error"};
+// A function's static, not a namespace-scope object: nothing of this copy runs before
+// main() has chosen it (rt/cli/parser.h).
+const cli::Program& program() {
+    static const cli::Program p{
+        "raytracer", "raytracer 1.0 (" RT_ISA_NAME " kernels)",
+        "usage: raytracer [-o DIR] [-j N] [--precision double|float] [--isa LEVEL] [--cull|--no-cull]\n"
+        "                 [--rounding truncate|nearest] [--min-weight W] [--stats FILE] [-q] [--strict]\n"
+        "                 [--repeat N] [--max-depth N] [--epsilon-scale F] [--bvh-... (measurements)]\n"
+        "                 [--frames A:B] [--shard K/N] scene.json|scene.xml...\n"
+        "       raytracer --trace X,Y [--camera N] [--trace-json FILE] [options] scene.json|scene.xml",
+        "Renders every camera of each scene file (JSON, or the course's older XML format when the\n"
+        "name ends in .xml) to the image its ImageName names: PNG (.png) or binary PPM (.ppm).\n",
+        "exit status: 0 all images written, 1 bad input or an image could not be written, 2 usage error"};
+    return p;
+}
 
 // Whether `path` holds a scene: JSON whose first key is "Scene", or XML with a <Scene>
 // element near its start. Outputs (--stats, --trace-json) never overwrite one: the usual
@@ -57,16 +68,19 @@ int raytracer_cli(int argc, char** argv) {
     PixelTraceRequest request;
     bool trace = false, camera_given = false;
     FrameSelection frames;
-    CLI::App app;
-    cli::setup(app, kProgram);
-    app.add_option("-o,--output-dir", o.output_dir, "write relative image names under DIR (created if needed)")
-        ->type_name("DIR");
+    cli::Parser app(program());
+    cli::add_value(app, "-o,--output-dir", "DIR", "write relative image names under DIR (created if needed)",
+                   [&o](const std::string& v) { o.output_dir = v; });
     cli::add_whole(app, "-j,--threads", "N", "render with N threads (default: all hardware threads)", o.render.threads,
                    1, 1024);
     bool float_precision = std::is_same_v<Real, float>;
     cli::add_choice(app, "--precision",
                     "double (default) or float (single precision; what it changes: docs/precision.md)", float_precision,
                     {{"double", false}, {"float", true}});
+    cli::add_value(app, "--isa", "LEVEL",
+                   "the copy of the kernels to run: auto (default: the best this CPU executes; the environment's "
+                   "RT_ISA when set), x86-64, avx2 or avx512 (--version names the one running)",
+                   [](const std::string&) {});
     app.add_flag("--cull,!--no-cull", o.render.cull, "back-face culling of camera and reflection rays (default: on)");
     cli::add_choice(app, "--rounding", "truncate (default, as the reference images) or nearest", o.render.rounding,
                     {{"truncate", Rounding::Truncate}, {"nearest", Rounding::Nearest}});
@@ -96,7 +110,7 @@ int raytracer_cli(int argc, char** argv) {
     app.add_flag(
         "--strict", o.strict,
         "treat every warning (unknown key, skipped triangle, ...) as an error: exit 1, no image of that scene");
-    app.option_defaults()->group("animations (several scene files, one per frame: docs/animations.md)");
+    app.group("animations (several scene files, one per frame: docs/animations.md)");
     cli::add_value(app, "--frames", "A:B",
                    "render only frames A to B of the scene files given (0-based positions, both included; "
                    "A or B may be left out)",
@@ -120,7 +134,7 @@ int raytracer_cli(int argc, char** argv) {
                            size_t(cli::whole_number("--shard K", v.substr(0, slash), 0, int(frames.shards) - 1));
                        o.frames = true;
                    });
-    app.option_defaults()->group("for measurements (the defaults are the scene's values and the tuned BVH)");
+    app.group("for measurements (the defaults are the scene's values and the tuned BVH)");
     cli::add_whole(app, "--repeat", "N",
                    "load, build and render each scene N times (1..1000); the summary line and --stats give the "
                    "median, fastest and slowest run of each phase; every image is written once",
@@ -143,8 +157,8 @@ int raytracer_cli(int argc, char** argv) {
                    "primitives a leaf block holds in the SAH cost (1..16, default: as many as one leaf test takes, "
                    "at most 4 in double for scenes of up to 2^17 primitives; --stats names it)",
                    o.bvh.block, 1, 16);
-    app.add_option("scenes", scenes);
-    app.final_callback([&] {
+    app.add_operands("scenes", scenes);
+    app.final_check([&] {
         if (scenes.empty()) cli::usage_error("no scene file given");
         if (trace && scenes.size() > 1) cli::usage_error("--trace takes one scene file");
         if (trace && o.frames)
@@ -156,8 +170,8 @@ int raytracer_cli(int argc, char** argv) {
             if (!out->empty() && is_scene_file(*out))
                 cli::usage_error(std::string(flag) + " " + *out + ": that is a scene file; it is not overwritten");
     });
-    if (const auto status = cli::parse(app, kProgram, argc, argv)) return *status;
-    // main() picked this copy of the program from the same arguments (precision_of).
+    if (const auto status = app.parse(argc, argv)) return *status;
+    // main() picked this copy of the program from the same arguments (their last --precision).
     if (float_precision != std::is_same_v<Real, float>) {
         cli::print_error(std::string("internal error: --precision ") + (float_precision ? "float" : "double") +
                          " reached the " + kPrecisionName + " renderer");
@@ -168,7 +182,7 @@ int raytracer_cli(int argc, char** argv) {
         try {
             return run_trace(scenes[0], o, request);
         } catch (const UsageError& e) {
-            return cli::report_usage_error(kProgram, e.what());
+            return cli::report_usage_error(program(), e.what());
         }
     }
 
@@ -186,7 +200,7 @@ int raytracer_cli(int argc, char** argv) {
     bool ok = report.ok;
     if (!stats_path.empty()) {
         try {
-            write_file_atomic(stats_path, stats_json(report.images, kProgram.version));
+            write_file_atomic(stats_path, stats_json(report.images, program().version));
         } catch (const InputError& e) {
             cli::print_error(e.what());
             ok = false;

@@ -13,7 +13,7 @@
 #include <utility>
 
 #include "progress.h"
-#include "rt/cli/options.h"
+#include "rt/cli/parser.h"
 #include "rt/core/error.h"
 #include "rt/geometry/scene.h"
 #include "rt/image/image.h"

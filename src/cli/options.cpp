@@ -153,3 +153,28 @@ std::optional<int> parse(CLI::App& app, const Program& p, int argc, char** argv)
 }
 
 }  // namespace rtcli
+
+namespace rtcli {
+
+Parser::Parser(const Program& p) : program_(p), app_(std::make_unique<CLI::App>()) { setup(*app_, p); }
+
+Parser::~Parser() = default;
+
+void Parser::add_value(const std::string& names, const std::string& value, const std::string& help,
+                       std::function<void(const std::string&)> set) {
+    rtcli::add_value(*app_, names, value, help, std::move(set));
+}
+
+void Parser::add_flag(const std::string& names, bool& target, const std::string& help) {
+    app_->add_flag(names, target, help);
+}
+
+void Parser::add_operands(const std::string& name, std::vector<std::string>& target) { app_->add_option(name, target); }
+
+void Parser::group(const std::string& name) { app_->option_defaults()->group(name); }
+
+void Parser::final_check(std::function<void()> check) { app_->final_callback(std::move(check)); }
+
+std::optional<int> Parser::parse(int argc, char** argv) { return rtcli::parse(*app_, program_, argc, argv); }
+
+}  // namespace rtcli

@@ -52,16 +52,16 @@ void release_free_memory() noexcept {
 #endif
 #endif
 
-#if !defined(RT_REAL_FLOAT) && !defined(RT_UNDER_ASAN) && !defined(__EMSCRIPTEN__)
+#if !defined(RT_REAL_FLOAT) && !defined(RT_SECONDARY_COPY) && !defined(RT_UNDER_ASAN) && !defined(__EMSCRIPTEN__)
 // The global operator new, replaced (C++17 [new.delete.single]) by one that takes its
 // memory from allocate_bytes: every std::vector, string and new-expression of the
 // program gets huge pages when it is large. libstdc++'s other forms (new[], nothrow)
 // call this one, and its other deletes call the two below; the aligned forms
 // (std::align_val_t) stay libstdc++'s own. operator delete is replaced too, although
 // libstdc++'s also calls std::free: tools that track the pairing (valgrind) then see
-// malloc and free on both sides. Compiled in the double copy of the library
-// only: the float copy (src/io/memory.cpp again, as namespace rt_float) must not define
-// it a second time. Not under AddressSanitizer (make check-asan), whose own operator
+// malloc and free on both sides. Compiled in the primary double copy of the library
+// only: the other copies (src/io/memory.cpp again, in namespace rt_float, rt_avx2, ...)
+// must not define it a second time. Not under AddressSanitizer (make check-asan), whose own operator
 // new and delete must pair with each other to check them, nor in the browser build.
 void* operator new(std::size_t n) {
     for (;;) {

@@ -1,15 +1,22 @@
-// The raytracer program, once per precision: the Makefile compiles the library twice,
-// with Real = double in namespace rt and with Real = float in namespace rt_float
-// (docs/precision.md), and main() runs one of the two for the whole run.
+// The raytracer program, once per copy of the library: the Makefile compiles it once per
+// precision (Real = double in namespace rt, Real = float in rt_float: docs/precision.md)
+// and per instruction-set level (ISAS: the primary level in those namespaces, the others
+// in rt_<level> and rt_float_<level>: docs/performance.md), and main() runs one copy for
+// the whole run.
 #pragma once
 
-namespace rt {
-// Parses the command line (--precision included, for --help and its checks), renders or
-// traces, and returns the exit status (0 ok, 1 bad input or an image not written, 2 usage).
-int raytracer_cli(int argc, char** argv);
-}  // namespace rt
+// Declares `ns::raytracer_cli`: parses the command line (--precision and --isa included,
+// for --help and their checks), renders or traces, and returns the exit status (0 ok, 1
+// bad input or an image not written, 2 usage). In a copy whose namespace the Makefile
+// renames, RT_PROGRAM(rt) declares that copy's own function.
+#define RT_PROGRAM(ns)                        \
+    namespace ns {                            \
+    int raytracer_cli(int argc, char** argv); \
+    }
 
-// The same function in the float copy (in that copy this redeclares its own rt::raytracer_cli).
-namespace rt_float {
-int raytracer_cli(int argc, char** argv);
-}  // namespace rt_float
+RT_PROGRAM(rt)
+RT_PROGRAM(rt_float)
+RT_PROGRAM(rt_avx2)
+RT_PROGRAM(rt_float_avx2)
+RT_PROGRAM(rt_avx512)
+RT_PROGRAM(rt_float_avx512)
