@@ -56,20 +56,20 @@ BUILD := build/$(MARCH)
 # a clash. main.cpp picks one copy per run (--precision); nothing else branches on the
 # precision. The only code outside namespace rt, compiled once, in the double copy: stb's
 # (stb_impl.cpp, the writer; stb_image_impl.cpp, the reader) and the command-line helpers
-# (namespace rtcli, cli/options.cpp) and tinygltf's (namespace rtgltf, convert/gltf_io.cpp),
-# which do not use Real.
+# (namespace rtcli, cli/options.cpp), tinygltf's (namespace rtgltf, convert/gltf_io.cpp) and
+# rtdiff's modes (namespace rtdiff, src/tools/), which do not use Real.
 FLOAT_CPPFLAGS := -DRT_REAL_FLOAT -Drt=rt_float
-ONCE_SRC := src/image/stb_impl.cpp src/image/stb_image_impl.cpp src/cli/options.cpp src/convert/gltf_io.cpp
+ONCE_SRC := src/image/stb_impl.cpp src/image/stb_image_impl.cpp src/cli/options.cpp src/convert/gltf_io.cpp src/tools/%
 
 # Every src/**/*.cpp is library code except program entry points (main.cpp, *_main.cpp).
 # The library is two archives per precision: librt.a, what ./raytracer links, and
 # librt_tools.a, the code only the helper programs and the tests use (TOOL_SRC: the scene
-# converter, the image comparison, its heatmap and its PNG reader), so that building
+# converter, the image comparison, its heatmap, its PNG reader and rtdiff's modes), so that building
 # ./raytracer alone compiles none of it. The float tools' few references to stb's reader
 # are resolved by the double librt_tools.a.
 LIB_SRC  := $(filter-out src/main.cpp %_main.cpp,$(shell find src -name '*.cpp' | sort))
 TOOL_SRC := $(filter src/convert/% src/image/image_diff.cpp src/image/diff_page.cpp src/image/diff_heatmap.cpp \
-                      src/image/bitmap_font.cpp src/image/stb_image_impl.cpp,$(LIB_SRC))
+                      src/image/bitmap_font.cpp src/image/stb_image_impl.cpp src/tools/%,$(LIB_SRC))
 LIB_OBJ  := $(LIB_SRC:%.cpp=$(BUILD)/%.o)
 LIB_FLOAT_OBJ := $(patsubst %.cpp,$(BUILD)/float/%.o,$(filter-out $(ONCE_SRC),$(LIB_SRC)))
 TOOL_OBJ := $(TOOL_SRC:%.cpp=$(BUILD)/%.o)

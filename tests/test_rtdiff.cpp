@@ -1,9 +1,10 @@
 // The image comparison of rt/image/image_diff.h on hand-made images with known differences,
-// and ./rtdiff on them: figures, worst pixels, the heatmap and its legend, exit statuses,
-// --fail-above, folders, --html, bad input.
+// and ./rtdiff on them: figures, worst pixels, the heatmap, its rings and its legend, exit
+// statuses, --fail-above, folders and subfolders, --html, --manifest, bad input.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,8 @@ rt::Image gradient(int w, int h) {
     for (size_t i = 0; i < img.rgb.size(); ++i) img.rgb[i] = uint8_t(40 + i % 150);
     return img;
 }
+
+void create_dirs(const std::string& dir) { std::filesystem::create_directories(dir); }
 
 uint8_t& at(rt::Image& img, int x, int y, int c) {
     return img.rgb[(size_t(y) * size_t(img.width) + size_t(x)) * 3 + size_t(c)];
@@ -214,6 +217,7 @@ TEST(ImageDiff, HeatmapLegendIsAStripBelowTheUnchangedDiffArea) {
     EXPECT_GT(count_colour(h, heat.height, 0, 0, 160), 100u);
     EXPECT_GT(count_colour(h, heat.height, 255, 255, 0), 0u);
     EXPECT_GT(count_colour(h, heat.height, 255, 0, 0), 0u);
+    EXPECT_GT(count_colour(h, heat.height, 0, 255, 255), 0u);  // the ring's key
     // The mark at the largest difference moves with it; a tolerance of 0 has no blue.
     EXPECT_NE(rt::add_heatmap_legend(heat, 1, 60).rgb, h.rgb);
     EXPECT_EQ(count_colour(rt::add_heatmap_legend(heat, 0, 30), heat.height, 0, 0, 160), 0u);
@@ -223,6 +227,72 @@ TEST(ImageDiff, HeatmapLegendIsAStripBelowTheUnchangedDiffArea) {
     EXPECT_EQ(hw.width, 700);
     EXPECT_TRUE(starts_with_image(hw, wide));
     EXPECT_GT(hw.height - wide.height, h.height - heat.height);
+}
+
+namespace {
+
+// `img` scaled down by `f` each way, each pixel the mean of f x f: a page showing it smaller.
+rt::Image shrink(const rt::Image& img, int f) {
+    rt::Image out;
+    out.width = img.width / f;
+    out.height = img.height / f;
+    out.rgb.resize(size_t(out.width) * size_t(out.height) * 3);
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x)
+            for (int c = 0; c < 3; ++c) {
+                int sum = 0;
+                for (int dy = 0; dy < f; ++dy)
+                    for (int dx = 0; dx < f; ++dx) sum += px(img, x * f + dx, y * f + dy, c);
+                at(out, x, y, c) = uint8_t(sum / (f * f));
+            }
+    return out;
+}
+
+// The pixels of `img` with some channel 64 levels or more from `base`'s: what stands out.
+size_t standing_out(const rt::Image& img, const rt::Image& base) {
+    size_t n = 0;
+    for (size_t p = 0; p < img.rgb.size(); p += 3)
+        for (size_t c = 0; c < 3; ++c)
+            if (std::abs(int(img.rgb[p + c]) - int(base.rgb[p + c])) >= 64) {
+                ++n;
+                break;
+            }
+    return n;
+}
+
+}  // namespace
+
+TEST(ImageDiff, ASinglePixelOffStaysVisibleOnAPageScaledDownFourTimes) {
+    const rt::Image a = gradient(800, 800);
+    rt::Image b = a;
+    at(b, 401, 302, 1) += 2;  // one pixel, just over the tolerance
+    const rt::Image equal = shrink(rt::diff_heatmap(a, a), 4);
+    // Alone, it is lost when the page scales the heatmap down.
+    EXPECT_EQ(standing_out(shrink(rt::diff_heatmap(a, b), 4), equal), 0u);
+    // Ringed, it stands out: a ring of some dozens of pixels around it.
+    rt::Image heat = rt::diff_heatmap(a, b);
+    EXPECT_EQ(rt::ring_small_spots(heat, a, b, 1), 1u);
+    const rt::Image small = shrink(heat, 4);
+    EXPECT_GE(standing_out(small, equal), 20u);
+    // Only near the pixel, and never over it: it keeps the ramp's colour.
+    for (int y = 0; y < small.height; ++y)
+        for (int x = 0; x < small.width; ++x) {
+            if (std::abs(x - 100) > 5 || std::abs(y - 75) > 5) {
+                ASSERT_EQ(px(small, x, y, 1), px(equal, x, y, 1)) << x << "," << y;
+            }
+        }
+    EXPECT_EQ(px(heat, 401, 302, 0), 255);
+    EXPECT_EQ(px(heat, 401, 302, 1), 255);
+    EXPECT_EQ(px(heat, 401, 302, 2), 0);
+    // A spot large enough to be seen gets no ring; rtdiff's heatmap is the ringed one.
+    rt::Image big = a;
+    for (int y = 100; y < 140; ++y)
+        for (int x = 100; x < 140; ++x) at(big, x, y, 0) ^= 0x80;
+    rt::Image big_heat = rt::diff_heatmap(a, big);
+    EXPECT_EQ(rt::ring_small_spots(big_heat, a, big, 1), 0u);
+    EXPECT_EQ(big_heat.rgb, rt::diff_heatmap(a, big).rgb);
+    const rt::ImageComparison c = rt::compare_images(a, b);
+    EXPECT_EQ(rt::heatmap_with_legend(a, b, c).rgb, rt::add_heatmap_legend(heat, 1, c.max_diff).rgb);
 }
 
 TEST(BitmapFont, GlyphsAreDistinctAndLowerCaseIsUpper) {
@@ -349,11 +419,14 @@ TEST_F(RtdiffTool, HeatmapIsWritten) {
     EXPECT_EQ(r.exit_code, 0) << r.err;
     rt::Image h;
     ASSERT_TRUE(load_png(tmp_ / "h.png", h));
-    // The heatmap with its legend below it, for this pair's largest difference.
-    const rt::Image heat = rt::diff_heatmap(a_, b_);
+    // The heatmap, its one off pixel ringed, with its legend below it, for this pair's
+    // largest difference.
+    rt::Image heat = rt::diff_heatmap(a_, b_);
+    EXPECT_EQ(rt::ring_small_spots(heat, a_, b_, 1), 1u);
     EXPECT_TRUE(starts_with_image(h, heat));
     EXPECT_GT(h.height, heat.height);
     EXPECT_EQ(h.rgb, rt::add_heatmap_legend(heat, 1, 2).rgb);
+    EXPECT_EQ(h.rgb, rt::heatmap_with_legend(a_, b_, rt::compare_images(a_, b_)).rgb);
 }
 
 TEST_F(RtdiffTool, BadInputIsOneLineAndExitOne) {
@@ -494,7 +567,7 @@ TEST_F(RtdiffTool, HtmlPageListsWorstFirstAndLinksExistingFiles) {
     // The heatmap is the one rt::diff_heatmap draws, with its legend; the worst pixel is listed.
     rt::Image h;
     ASSERT_TRUE(load_png(tmp_ / "page/heatmaps/one off.png", h));
-    EXPECT_EQ(h.rgb, rt::add_heatmap_legend(rt::diff_heatmap(a_, b_), 1, 2).rgb);
+    EXPECT_EQ(h.rgb, rt::heatmap_with_legend(a_, b_, rt::compare_images(a_, b_)).rgb);
     EXPECT_TRUE(contains(page, "<li>13,7 off by 2: A ")) << page;
 }
 
@@ -517,7 +590,7 @@ TEST_F(RtdiffTool, HtmlPageForTwoImages) {
     EXPECT_EQ(url_decode(srcs[1]), "../kb.png");
     rt::Image h;
     ASSERT_TRUE(load_png(tmp_ / "p2/" + url_decode(srcs[2]), h));
-    EXPECT_EQ(h.rgb, rt::add_heatmap_legend(rt::diff_heatmap(a, b), 1, 30).rgb);
+    EXPECT_EQ(h.rgb, rt::heatmap_with_legend(a, b, rt::compare_images(a, b)).rgb);
     // Images of different sizes: bad input, no page.
     rt::write_png(gradient(11, 8), tmp_ / "wide.png");
     EXPECT_EQ(run({"--html", "p3", "ka.png", "wide.png"}).exit_code, 1);
@@ -561,4 +634,174 @@ TEST_F(RtdiffTool, AFolderAndAFileIsBadInput) {
     const RunResult mixed = run({tmp_.path(), "a.png"});
     EXPECT_EQ(mixed.exit_code, 1);
     EXPECT_EQ(mixed.err, "error: a.png: not a folder, but " + tmp_.path() + " is one\n");
+}
+
+TEST_F(RtdiffTool, FoldersMatchImagesInSubfoldersByRelativePath) {
+    TempDir a, b;
+    for (const TempDir* d : {&a, &b}) {
+        create_dirs(*d / "grass");
+        create_dirs(*d / "raven/dragon");
+    }
+    rt::write_png(a_, a / "grass/grass_desert.png");
+    rt::write_png(b_, b / "grass/grass_desert.png");
+    rt::write_png(a_, a / "raven/dragon/dragon_new.png");
+    rt::write_png(a_, b / "raven/dragon/dragon_new.png");
+    rt::write_png(a_, a / "grass_desert.png");  // not the same relative path
+    const RunResult r = run_program(rtdiff_path(), {"--html", tmp_ / "page", a.path(), b.path()});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    const std::vector<std::string> lines = split_lines(r.out);
+    ASSERT_EQ(lines.size(), 6u) << r.out;
+    EXPECT_EQ(lines[1].rfind("grass/grass_desert.png ", 0), 0u) << r.out;
+    EXPECT_TRUE(contains(lines[1], "x 13..13 y 7..7")) << r.out;
+    EXPECT_EQ(lines[3].rfind("raven/dragon/dragon_new.png ", 0), 0u) << r.out;
+    EXPECT_EQ(lines[4], "1 image only in " + a.path() + " (not compared): grass_desert.png") << r.out;
+    EXPECT_EQ(lines[5], "2 compared, 1 only in " + a.path() + ", 0 only in " + b.path()) << r.out;
+    // The page's heatmaps keep the subfolders, so names in two subfolders cannot clash.
+    EXPECT_TRUE(file_exists(tmp_ / "page/heatmaps/grass/grass_desert.png"));
+    EXPECT_TRUE(contains(read_text(tmp_ / "page/index.html"), "src=\"heatmaps/grass/grass_desert.png\""));
+}
+
+namespace {
+
+// A course-like tree under `root`: shared/scenes/hw9/MANIFEST.tsv (lines `manifest`),
+// a scene cams.json of two cameras (the second writes second.png), and references in
+// shared/references/hw9/.
+struct ManifestTree {
+    explicit ManifestTree(const std::string& root)
+        : shared(root + "/shared"), scenes(shared + "/scenes/hw9"), refs(shared + "/references/hw9") {
+        create_dirs(scenes);
+        create_dirs(refs + "/sub");
+        write_text(scenes + "/cams.json", R"({"Scene": {"Cameras": {"Camera": [{"_id": "1", "ImageName": "first.png"},)"
+                                          R"( {"_id": "2", "ImageName": "second.png"}]}}})");
+    }
+    std::string manifest(const std::vector<std::string>& lines) const {
+        std::string text = "# scene\timage\treference\tinputs\n";
+        for (const std::string& l : lines) text += l + "\n";
+        write_text(scenes + "/MANIFEST.tsv", text);
+        return scenes + "/MANIFEST.tsv";
+    }
+    std::string shared, scenes, refs;
+};
+
+// Every line of `err` is ours: "error: ..." or "warning: ...".
+bool only_errors_and_warnings(const std::string& err) {
+    for (const std::string& l : split_lines(err))
+        if (l.rfind("error: ", 0) != 0 && l.rfind("warning: ", 0) != 0) return false;
+    return true;
+}
+
+}  // namespace
+
+TEST_F(RtdiffTool, ManifestComparesEachSceneWithItsReference) {
+    const ManifestTree t(tmp_.path());
+    const rt::Image a = gradient(40, 40);
+    rt::Image one = a, many = a;
+    at(one, 5, 6, 2) += 9;                                    // 1 of 1600 pixels: 0.0625%, a pass
+    for (int x = 0; x < 40; ++x) at(many, x, 20, 0) ^= 0x40;  // 2.5%: over 0.2%
+    rt::write_png(a, t.refs + "/pass.png");
+    rt::write_png(a, t.refs + "/second.png");
+    rt::write_png(a, t.refs + "/fail.png");
+    rt::write_png(a, t.refs + "/gone.png");
+    rt::write_png(a, t.refs + "/sub/amb.png");
+    const std::string out = tmp_ / "out";
+    for (const char* d : {"/deep/er", "/x", "/y"}) create_dirs(out + d);
+    rt::write_png(a, out + "/pass.png");
+    rt::write_png(one, out + "/deep/er/second.png");  // found in a subfolder
+    rt::write_png(many, out + "/fail.png");
+    rt::write_png(a, out + "/x/amb.png");
+    rt::write_png(a, out + "/y/amb.png");
+    rt::write_png(a, out + "/inc.png");  // its scene is skipped even so
+    const std::string m = t.manifest({
+        "pass.json\tpass.png\treferences/hw9/pass.png\tcomplete",
+        "cams.json\tsecond.png\treferences/hw9/second.png\tcomplete (a note)",
+        "fail.json\tfail.png\treferences/hw9/fail.png\tcomplete",
+        "gone.json\tgone.png\treferences/hw9/gone.png\tcomplete",
+        "sub/amb.json\tamb.png\treferences/hw9/sub/amb.png\tcomplete",
+        "inc.json\tinc.png\treferences/hw9/inc.png\tincomplete: missing inc.ply",
+    });
+    const RunResult r = run_program(rtdiff_path(), {"--manifest", m, out});
+    EXPECT_EQ(r.exit_code, 1) << r.err;  // a FAIL, a missing and an ambiguous image
+    const std::vector<std::string> lines = split_lines(r.out);
+    ASSERT_EQ(lines.size(), 12u) << r.out;
+    // Worst first: the failures, then the passes, then the skipped scenes.
+    EXPECT_EQ(lines[1].rfind("FAIL       fail.png  ", 0), 0u) << r.out;
+    EXPECT_TRUE(contains(lines[1], "2.5000")) << lines[1];
+    EXPECT_EQ(lines[2].rfind("  worst pixel 0,20 off by 64: ", 0), 0u) << r.out;
+    EXPECT_EQ(lines[3], "  trace it: ./raytracer --trace 0,20 " + t.scenes + "/fail.json") << r.out;
+    EXPECT_EQ(lines[4],
+              "missing    gone.png    not in " + out + " or its subfolders (render " + t.scenes + "/gone.json)")
+        << r.out;
+    EXPECT_EQ(lines[5], "ambiguous  amb.png     2 files under " + out + ": x/amb.png, y/amb.png") << r.out;
+    EXPECT_EQ(lines[6].rfind("pass       second.png  ", 0), 0u) << r.out;
+    EXPECT_TRUE(contains(lines[6], "0.0625")) << lines[6];
+    EXPECT_EQ(lines[7].rfind("  worst pixel 5,6 off by 9: ", 0), 0u) << r.out;
+    // The scene's second camera writes second.png: the command says so.
+    EXPECT_EQ(lines[8], "  trace it: ./raytracer --trace 5,6 --camera 2 " + t.scenes + "/cams.json") << r.out;
+    EXPECT_EQ(lines[9].rfind("pass       pass.png  ", 0), 0u) << r.out;  // equal: no worst pixel
+    EXPECT_EQ(lines[10], "skipped    inc.png     incomplete: missing inc.ply") << r.out;
+    EXPECT_EQ(lines[11],
+              "6 scenes: 2 pass, 1 FAIL, 1 missing, 1 ambiguous, 0 error, 1 skipped (inputs incomplete); a pass has "
+              "at most 0.2% of its pixels off by more than 1")
+        << r.out;
+    // fail.json does not exist: a warning that the command is for the first camera.
+    EXPECT_TRUE(contains(r.err, "warning: " + t.scenes + "/fail.json: cannot read it")) << r.err;
+    EXPECT_TRUE(only_errors_and_warnings(r.err)) << r.err;
+
+    // --fail-above moves the bar; missing and ambiguous images still fail.
+    const RunResult loose = run_program(rtdiff_path(), {"--manifest", m, "--fail-above", "3", out});
+    EXPECT_EQ(loose.exit_code, 1);
+    EXPECT_TRUE(contains(loose.out, "6 scenes: 3 pass, 0 FAIL, 1 missing, 1 ambiguous")) << loose.out;
+    // Passes and skipped scenes alone: exit status 0.
+    const std::string ok = t.manifest({"pass.json\tpass.png\treferences/hw9/pass.png\tcomplete",
+                                       "cams.json\tsecond.png\treferences/hw9/second.png\tcomplete",
+                                       "inc.json\tinc.png\treferences/hw9/inc.png\tincomplete: missing inc.ply"});
+    const RunResult good = run_program(rtdiff_path(), {"--manifest", ok, out});
+    EXPECT_EQ(good.exit_code, 0) << good.out << good.err;
+    EXPECT_EQ(good.err, "");
+    // The page, inside the renders' folder, twice: its heatmaps are not taken for renders.
+    for (int i = 0; i < 2; ++i) {
+        const RunResult page = run_program(rtdiff_path(), {"--manifest", ok, "--html", out + "/diff", out});
+        EXPECT_EQ(page.exit_code, 0) << page.out << page.err;
+    }
+    const std::string html = read_text(out + "/diff/index.html");
+    EXPECT_TRUE(contains(html, "<th>verdict</th>")) << html;
+    EXPECT_TRUE(contains(html, "<td class=l>skipped")) << html;
+    EXPECT_TRUE(file_exists(out + "/diff/heatmaps/second.png"));
+    for (const std::string& l : attributes(html, "src")) EXPECT_TRUE(file_exists(out + "/diff/" + url_decode(l))) << l;
+}
+
+TEST_F(RtdiffTool, ManifestBadInput) {
+    const ManifestTree t(tmp_.path());
+    const std::string out = tmp_ / "out";
+    create_dirs(out);
+    // A malformed line: one line on stderr naming the file and the line, nothing compared.
+    const std::string m =
+        t.manifest({"a.json\ta.png\treferences/hw9/a.png\tcomplete", "b.json\tb.png\tcomplete",
+                    "c.json\ta.png\treferences/hw9/c.png\tcomplete", "d.json\td.jpg\treferences/hw9/d.png\tcomplete"});
+    const RunResult r = run_program(rtdiff_path(), {"--manifest", m, out});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(r.out, "");
+    EXPECT_EQ(r.err, "error: " + m +
+                         ":3: 4 tab-separated columns expected (scene, image, reference, inputs), found 3\n"
+                         "error: " +
+                         m + ":4: a.png is named on line 2 too\nerror: " + m + ":5: d.jpg: not a .png or .ppm name\n");
+    // Every scene skipped: nothing compared, which is no success.
+    const std::string skip = t.manifest({"a.json\ta.png\treferences/hw9/a.png\tincomplete: missing a.ply"});
+    const RunResult none = run_program(rtdiff_path(), {"--manifest", skip, out});
+    EXPECT_EQ(none.exit_code, 1);
+    EXPECT_EQ(none.err, "error: " + skip + ": no scene with complete inputs\n");
+    // No manifest, no folder, a reference missing.
+    EXPECT_EQ(run_program(rtdiff_path(), {"--manifest", tmp_ / "none.tsv", out}).err,
+              "error: " + tmp_ / "none.tsv" + ": cannot open: No such file or directory\n");
+    EXPECT_EQ(run_program(rtdiff_path(), {"--manifest", skip, tmp_ / "nowhere"}).exit_code, 1);
+    rt::write_png(a_, out + "/a.png");
+    const std::string noref = t.manifest({"a.json\ta.png\treferences/hw9/a.png\tcomplete"});
+    const RunResult bad = run_program(rtdiff_path(), {"--manifest", noref, out});
+    EXPECT_EQ(bad.exit_code, 1);
+    EXPECT_TRUE(contains(bad.out, "error      a.png  " + t.refs + "/a.png: no such file")) << bad.out;
+    // Usage errors: a second folder, options of the other modes.
+    EXPECT_EQ(run_program(rtdiff_path(), {"--manifest", noref, out, out}).exit_code, 2);
+    EXPECT_EQ(run_program(rtdiff_path(), {"--manifest", noref}).exit_code, 2);
+    EXPECT_EQ(run_program(rtdiff_path(), {"--manifest", noref, "--scene", "s.json", out}).exit_code, 2);
+    EXPECT_EQ(run_program(rtdiff_path(), {"--manifest", noref, "--only-common", out}).exit_code, 2);
 }
