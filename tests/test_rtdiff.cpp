@@ -722,7 +722,7 @@ TEST_F(RtdiffTool, ManifestComparesEachSceneWithItsReference) {
     const RunResult r = run_program(rtdiff_path(), {"--manifest", m, out});
     EXPECT_EQ(r.exit_code, 1) << r.err;  // a FAIL, a missing and an ambiguous image
     const std::vector<std::string> lines = split_lines(r.out);
-    ASSERT_EQ(lines.size(), 12u) << r.out;
+    ASSERT_EQ(lines.size(), 13u) << r.out;
     // Worst first: the failures, then the passes, then the skipped scenes.
     EXPECT_EQ(lines[1].rfind("FAIL       fail.png  ", 0), 0u) << r.out;
     EXPECT_TRUE(contains(lines[1], "2.5000")) << lines[1];
@@ -734,12 +734,13 @@ TEST_F(RtdiffTool, ManifestComparesEachSceneWithItsReference) {
     EXPECT_EQ(lines[5], "ambiguous  amb.png     2 files under " + out + ": x/amb.png, y/amb.png") << r.out;
     EXPECT_EQ(lines[6].rfind("pass       second.png  ", 0), 0u) << r.out;
     EXPECT_TRUE(contains(lines[6], "0.0625")) << lines[6];
-    EXPECT_EQ(lines[7].rfind("  worst pixel 5,6 off by 9: ", 0), 0u) << r.out;
+    EXPECT_EQ(lines[7], "  manifest: complete (a note)") << r.out;
+    EXPECT_EQ(lines[8].rfind("  worst pixel 5,6 off by 9: ", 0), 0u) << r.out;
     // The scene's second camera writes second.png: the command says so.
-    EXPECT_EQ(lines[8], "  trace it: ./raytracer --trace 5,6 --camera 2 " + t.scenes + "/cams.json") << r.out;
-    EXPECT_EQ(lines[9].rfind("pass       pass.png  ", 0), 0u) << r.out;  // equal: no worst pixel
-    EXPECT_EQ(lines[10], "skipped    inc.png     incomplete: missing inc.ply") << r.out;
-    EXPECT_EQ(lines[11],
+    EXPECT_EQ(lines[9], "  trace it: ./raytracer --trace 5,6 --camera 2 " + t.scenes + "/cams.json") << r.out;
+    EXPECT_EQ(lines[10].rfind("pass       pass.png  ", 0), 0u) << r.out;  // equal: no worst pixel
+    EXPECT_EQ(lines[11], "skipped    inc.png     incomplete: missing inc.ply") << r.out;
+    EXPECT_EQ(lines[12],
               "6 scenes: 2 pass, 1 FAIL, 1 missing, 1 ambiguous, 0 error, 1 skipped (inputs incomplete); a pass has "
               "at most 0.2% of its pixels off by more than 1")
         << r.out;

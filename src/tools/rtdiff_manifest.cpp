@@ -245,6 +245,7 @@ int compare_manifest(const std::string& out_dir, const Options& o) {
         const std::string size = std::to_string(r.c.width) + "x" + std::to_string(r.c.height);
         std::printf("%-9s  %-*s  %9s  %4d  %10.4f  %9s\n", r.verdict.c_str(), w, r.e.image.c_str(), size.c_str(),
                     r.c.max_diff, r.c.pct_over, rt::psnr_text(r.c.psnr).c_str());
+        if (r.e.inputs != "complete") std::printf("  manifest: %s\n", r.e.inputs.c_str());  // its note
         if (!r.worst.empty())
             std::printf("  worst pixel %s\n  trace it: %s\n", rt::pixel_text(r.worst.front()).c_str(), r.trace.c_str());
     }
