@@ -284,6 +284,17 @@ TEST(ImageDiff, ASinglePixelOffStaysVisibleOnAPageScaledDownFourTimes) {
     EXPECT_EQ(px(heat, 401, 302, 0), 255);
     EXPECT_EQ(px(heat, 401, 302, 1), 255);
     EXPECT_EQ(px(heat, 401, 302, 2), 0);
+    // Two spots near each other get a ring each; a crowd of spots none, as rings would
+    // cover it.
+    rt::Image two = b;
+    at(two, 421, 302, 0) += 5;
+    rt::Image two_heat = rt::diff_heatmap(a, two);
+    EXPECT_EQ(rt::ring_small_spots(two_heat, a, two, 1), 2u);
+    rt::Image crowd = a;
+    for (int y = 300; y < 340; y += 4)
+        for (int x = 300; x < 340; x += 4) at(crowd, x, y, 0) ^= 0x80;
+    rt::Image crowd_heat = rt::diff_heatmap(a, crowd);
+    EXPECT_EQ(rt::ring_small_spots(crowd_heat, a, crowd, 1), 0u);
     // A spot large enough to be seen gets no ring; rtdiff's heatmap is the ringed one.
     rt::Image big = a;
     for (int y = 100; y < 140; ++y)

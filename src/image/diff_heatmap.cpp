@@ -20,6 +20,9 @@ const uint8_t kPaper[3] = {255, 255, 255};
 const uint8_t kInk[3] = {0, 0, 0};
 const uint8_t kWithin[3] = {0, 0, 160};  // within the tolerance
 const uint8_t kRing[3] = {0, 255, 255};  // around a small spot of off pixels
+// A spot is ringed only where at most this many off pixels (its own included) lie within
+// two ring radii: a crowd of spots would fill the heatmap with rings and hide its colours.
+constexpr uint32_t kRingCrowd = 8;
 // Equal pixels' swatch: one of the dimmed greys (a's luma / 4, 0..63) they show as.
 const uint8_t kEqualSwatch[3] = {48, 48, 48};
 
@@ -104,6 +107,19 @@ size_t ring_small_spots(Image& heat, const Image& a, const Image& b, int toleran
     // Sizes grow with the image, as the factor by which a page scales it down does.
     const int extent = std::max(w, a.height);
     const int small = std::max(3, extent / 160), radius = std::max(6, extent / 50), thick = std::max(1, extent / 200);
+    // Off pixels counted over rectangles through a summed-area table.
+    const size_t stride = size_t(w) + 1;
+    std::vector<uint32_t> sum(stride * (size_t(a.height) + 1));
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < w; ++x)
+            sum[(size_t(y) + 1) * stride + size_t(x) + 1] =
+                off[size_t(y) * size_t(w) + size_t(x)] + sum[size_t(y) * stride + size_t(x) + 1] +
+                sum[(size_t(y) + 1) * stride + size_t(x)] - sum[size_t(y) * stride + size_t(x)];
+    const auto off_within = [&](int cx, int cy, int r) {
+        const size_t x0 = size_t(std::max(cx - r, 0)), x1 = size_t(std::min(cx + r, w - 1)) + 1;
+        const size_t y0 = size_t(std::max(cy - r, 0)), y1 = size_t(std::min(cy + r, a.height - 1)) + 1;
+        return sum[y1 * stride + x1] - sum[y0 * stride + x1] - sum[y1 * stride + x0] + sum[y0 * stride + x0];
+    };
     // The 8-connected spots of off pixels, each by its box, found by flood fill.
     std::vector<uint8_t> seen(off.size());
     std::vector<size_t> todo;
@@ -128,7 +144,9 @@ size_t ring_small_spots(Image& heat, const Image& a, const Image& b, int toleran
                 }
         }
         if (x1 - x0 >= small || y1 - y0 >= small) continue;  // large enough to be seen
-        ring(heat, (x0 + x1) / 2, (y0 + y1) / 2, radius + std::max(x1 - x0, y1 - y0) / 2, thick, kRing, &off);
+        const int cx = (x0 + x1) / 2, cy = (y0 + y1) / 2, r = radius + std::max(x1 - x0, y1 - y0) / 2;
+        if (off_within(cx, cy, 2 * r) > kRingCrowd) continue;
+        ring(heat, cx, cy, r, thick, kRing, &off);
         ++rings;
     }
     return rings;

@@ -58,8 +58,10 @@ Image diff_heatmap(const Image& a, const Image& b, int tolerance = 1);
 // `a` and `b`), so that a single off pixel stays visible on a page that shows the heatmap
 // scaled down: around each 8-connected group of pixels over the tolerance whose box is
 // smaller than max(3, L / 160) pixels each way, a ring of radius max(6, L / 50) (more by half
-// the box) and thickness max(1, L / 200), L the image's larger side. The rings cover equal
-// and within-tolerance pixels only, never an off pixel. Returns the number of rings.
+// the box) and thickness max(1, L / 200), L the image's larger side, unless more than 8 off
+// pixels in all lie within two ring radii of it (a crowd of rings would hide the colours).
+// The rings cover equal and within-tolerance pixels only, never an off pixel. Returns the
+// number of rings.
 size_t ring_small_spots(Image& heat, const Image& a, const Image& b, int tolerance);
 
 // The narrowest heatmap with a legend: a narrower heatmap is padded on the right to this
