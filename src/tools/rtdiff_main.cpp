@@ -29,7 +29,8 @@ const rt::cli::Program kProgram{
     "rtdiff", "rtdiff 1.0",
     "usage: rtdiff [--tolerance N] [--heatmap OUT] [--html DIR] [--fail-above P]\n"
     "              [--scene FILE [--camera N]] [--only-common] A B\n"
-    "       rtdiff --manifest MANIFEST.tsv [--tolerance N] [--heatmap DIR] [--html DIR] [--fail-above P] OUTDIR",
+    "       rtdiff --manifest MANIFEST.tsv [--tolerance N] [--heatmap DIR] [--html DIR]\n"
+    "              [--fail-above P] OUTDIR",
     "Compares image A with image B (PNG or PPM), or every image of the same relative path in\n"
     "folders A and B and their subfolders: size, largest and mean channel difference, the\n"
     "pixels with some channel off by more than the tolerance (count, share and bounding box)\n"
@@ -225,10 +226,11 @@ int main(int argc, char** argv) {
     cli::add_whole(app, "--tolerance", "N",
                    "a pixel is off when some channel differs by more than N levels (default 1)", o.tolerance, 0, 255);
     cli::add_text(app, "--heatmap", "OUT",
-                  "write where and how much the images differ as a PNG, its legend below it (two folders: a "
-                  "folder of them)",
+                  "write where and how much the images differ as a PNG, its legend below it (folders and "
+                  "--manifest: a folder of them)",
                   o.heatmap, "a file name");
-    cli::add_value(app, "--fail-above", "P", "exit status 1 when more than P% of the pixels are off",
+    cli::add_value(app, "--fail-above", "P",
+                   "exit status 1 when more than P% of the pixels are off (--manifest: a scene's FAIL, default 0.2)",
                    [&o](const std::string& v) {
                        o.fail_above = cli::number("--fail-above", v, "a percentage from 0 to 100", percent);
                    });
