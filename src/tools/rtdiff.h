@@ -47,8 +47,8 @@ bool over_limit(const rt::ImageComparison& c, const Options& o);
 void write_heatmaps(const rt::Image& heat, const std::string& name, const Options& o);
 
 // The image files (PNG, PPM) under folder `dir` and its subfolders, as sorted relative
-// paths with '/' ("grass/grass_desert.png"); the --html and --heatmap folders are not
-// entered. Throws rt::InputError when `dir` cannot be read.
+// paths with '/' ("grass/grass_desert.png"); the --html and --heatmap folders, and any
+// folder holding an rtdiff page (index.html), are not entered. Throws rt::InputError when `dir` cannot be read.
 std::set<std::string> image_files(const std::string& dir, const Options& o);
 
 // The manifest mode (docs/rtdiff.md): every image o.manifest names, found under `out_dir`,

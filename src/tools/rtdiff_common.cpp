@@ -1,5 +1,6 @@
 // What rtdiff's modes share (rtdiff.h): the trace command, heatmap files, folder walks.
 #include <filesystem>
+#include <fstream>
 #include <system_error>
 
 #include "rt/core/error.h"
@@ -68,6 +69,14 @@ bool same_folder(const fs::path& dir, const std::string& other) {
     return !other.empty() && fs::equivalent(dir, other, ec) && !ec;
 }
 
+// True when folder `dir` holds a page rtdiff --html wrote (its index.html's title says so).
+bool holds_rtdiff_page(const fs::path& dir) {
+    std::ifstream page(dir / "index.html");
+    std::string head(160, '\0');
+    page.read(&head[0], std::streamsize(head.size()));
+    return head.find("<title>rtdiff: ") != std::string::npos;
+}
+
 }  // namespace
 
 std::set<std::string> image_files(const std::string& dir, const Options& o) {
@@ -77,8 +86,9 @@ std::set<std::string> image_files(const std::string& dir, const Options& o) {
     for (; !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
         std::error_code ec2;
         if (it->is_directory(ec2)) {
-            // rtdiff's own output is no render: a second run must not find its heatmaps.
-            if (same_folder(it->path(), o.html) || same_folder(it->path(), o.heatmap)) it.disable_recursion_pending();
+            // rtdiff's own output is no render: a later run must not find its heatmaps.
+            if (same_folder(it->path(), o.html) || same_folder(it->path(), o.heatmap) || holds_rtdiff_page(it->path()))
+                it.disable_recursion_pending();
         } else if (it->is_regular_file(ec2) && is_image_name(it->path())) {
             names.insert(it->path().lexically_relative(dir).generic_string());
         }
