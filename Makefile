@@ -85,27 +85,29 @@ endif
 BUILD := build/$(PRIMARY_ISA)
 TEST_BUILD := build/$(TEST_ISA)
 
-# One program, both precisions (docs/precision.md). The library is compiled twice: as
-# written, with Real = double, in namespace rt (objects in $(BUILD)/src); and, when
+# One program, both precisions (docs/precision.md). Each level's library is compiled twice:
+# as written, with Real = double, in namespace rt (objects in build/<level>/src); and, when
 # PRECISIONS has float, with Real = float (-DRT_REAL_FLOAT), every token `rt` renamed
-# rt_float (objects in $(BUILD)/float/src), so that both copies link into one program without
-# a clash. main.cpp picks one copy per run (--precision); nothing else branches on the
-# precision. The only code outside namespace rt, compiled once, in the double copy: stb's
-# (stb_impl.cpp, the writer; stb_image_impl.cpp, the reader) and the command-line helpers
-# (namespace rtcli, cli/options.cpp) and tinygltf's (namespace rtgltf, convert/gltf_io.cpp),
-# which do not use Real.
+# rt_float (objects in build/<level>/float/src), so that the copies link into one program
+# without a clash (isa_copy, below, adds the level's suffix). main.cpp picks one copy per run
+# (--precision, --isa); nothing else branches on them. The only code outside namespace rt,
+# compiled once, in the primary double copy: stb's (stb_impl.cpp, the writer;
+# stb_image_impl.cpp, the reader), the command-line helpers (namespace rtcli, cli/), tinygltf's
+# (namespace rtgltf, convert/gltf_io.cpp) and rtdiff's modes (namespace rtdiff, src/tools/),
+# which use neither Real nor a level's instructions. FLOAT_CPPFLAGS: the sanitized and
+# WebAssembly builds' float copy.
 FLOAT_CPPFLAGS := -DRT_REAL_FLOAT -Drt=rt_float
-ONCE_SRC := src/image/stb_impl.cpp src/image/stb_image_impl.cpp src/cli/options.cpp src/cli/isa.cpp src/convert/gltf_io.cpp
+ONCE_SRC := src/image/stb_impl.cpp src/image/stb_image_impl.cpp src/cli/options.cpp src/cli/isa.cpp src/convert/gltf_io.cpp src/tools/%
 
 # Every src/**/*.cpp is library code except program entry points (main.cpp, *_main.cpp).
 # The library is two archives per precision: librt.a, what ./raytracer links, and
 # librt_tools.a, the code only the helper programs and the tests use (TOOL_SRC: the scene
-# converter, the image comparison, its heatmap and its PNG reader), so that building
+# converter, the image comparison, its heatmap, its PNG reader and rtdiff's modes), so that building
 # ./raytracer alone compiles none of it. The float tools' few references to stb's reader
 # are resolved by the double librt_tools.a.
 LIB_SRC  := $(filter-out src/main.cpp %_main.cpp,$(shell find src -name '*.cpp' | sort))
 TOOL_SRC := $(filter src/convert/% src/image/image_diff.cpp src/image/diff_page.cpp src/image/diff_heatmap.cpp \
-                      src/image/bitmap_font.cpp src/image/stb_image_impl.cpp,$(LIB_SRC))
+                      src/image/bitmap_font.cpp src/image/stb_image_impl.cpp src/tools/%,$(LIB_SRC))
 RENDER_SRC := $(filter-out $(TOOL_SRC),$(LIB_SRC))
 # copy_dir(level,float): a copy's object folder; copy_obj(level,float,sources): its objects
 # of those sources (the ONCE_SRC ones in the primary double copy only).

@@ -1,6 +1,7 @@
 // The image comparison of rt/image/image_diff.h on hand-made images with known differences,
-// and ./rtdiff on them: figures, worst pixels, the heatmap and its legend, exit statuses,
-// --fail-above, folders, --html, bad input.
+// and ./rtdiff on them: figures, worst pixels, the heatmap, its rings and its legend, exit
+// statuses, --fail-above, folders, --html, bad input (subfolders and --manifest:
+// test_rtdiff_manifest.cpp).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,26 +12,12 @@
 #include "rt/image/bitmap_font.h"
 #include "rt/image/image.h"
 #include "rt/image/image_diff.h"
+#include "rtdiff_test_support.h"
 #include "test_support.h"
 
+using namespace rtdiff_test;
+
 namespace {
-
-rt::Image gradient(int w, int h) {
-    rt::Image img;
-    img.width = w;
-    img.height = h;
-    img.rgb.resize(size_t(w) * size_t(h) * 3);
-    for (size_t i = 0; i < img.rgb.size(); ++i) img.rgb[i] = uint8_t(40 + i % 150);
-    return img;
-}
-
-uint8_t& at(rt::Image& img, int x, int y, int c) {
-    return img.rgb[(size_t(y) * size_t(img.width) + size_t(x)) * 3 + size_t(c)];
-}
-
-uint8_t px(const rt::Image& img, int x, int y, int c) {
-    return img.rgb[(size_t(y) * size_t(img.width) + size_t(x)) * 3 + size_t(c)];
-}
 
 // A 10x8 gradient `a` and a copy `b` with seven pixels off by known amounts. By largest
 // channel difference: 8,6 by 30 (A 94 95 96, B 94 65 96); 2,3 and 1,5 by 9; 6,1 by 5
@@ -214,6 +201,7 @@ TEST(ImageDiff, HeatmapLegendIsAStripBelowTheUnchangedDiffArea) {
     EXPECT_GT(count_colour(h, heat.height, 0, 0, 160), 100u);
     EXPECT_GT(count_colour(h, heat.height, 255, 255, 0), 0u);
     EXPECT_GT(count_colour(h, heat.height, 255, 0, 0), 0u);
+    EXPECT_GT(count_colour(h, heat.height, 0, 255, 255), 0u);  // the ring's key
     // The mark at the largest difference moves with it; a tolerance of 0 has no blue.
     EXPECT_NE(rt::add_heatmap_legend(heat, 1, 60).rgb, h.rgb);
     EXPECT_EQ(count_colour(rt::add_heatmap_legend(heat, 0, 30), heat.height, 0, 0, 160), 0u);
@@ -223,6 +211,83 @@ TEST(ImageDiff, HeatmapLegendIsAStripBelowTheUnchangedDiffArea) {
     EXPECT_EQ(hw.width, 700);
     EXPECT_TRUE(starts_with_image(hw, wide));
     EXPECT_GT(hw.height - wide.height, h.height - heat.height);
+}
+
+namespace {
+
+// `img` scaled down by `f` each way, each pixel the mean of f x f: a page showing it smaller.
+rt::Image shrink(const rt::Image& img, int f) {
+    rt::Image out;
+    out.width = img.width / f;
+    out.height = img.height / f;
+    out.rgb.resize(size_t(out.width) * size_t(out.height) * 3);
+    for (int y = 0; y < out.height; ++y)
+        for (int x = 0; x < out.width; ++x)
+            for (int c = 0; c < 3; ++c) {
+                int sum = 0;
+                for (int dy = 0; dy < f; ++dy)
+                    for (int dx = 0; dx < f; ++dx) sum += px(img, x * f + dx, y * f + dy, c);
+                at(out, x, y, c) = uint8_t(sum / (f * f));
+            }
+    return out;
+}
+
+// The pixels of `img` with some channel 64 levels or more from `base`'s: what stands out.
+size_t standing_out(const rt::Image& img, const rt::Image& base) {
+    size_t n = 0;
+    for (size_t p = 0; p < img.rgb.size(); p += 3)
+        for (size_t c = 0; c < 3; ++c)
+            if (std::abs(int(img.rgb[p + c]) - int(base.rgb[p + c])) >= 64) {
+                ++n;
+                break;
+            }
+    return n;
+}
+
+}  // namespace
+
+TEST(ImageDiff, ASinglePixelOffStaysVisibleOnAPageScaledDownFourTimes) {
+    const rt::Image a = gradient(800, 800);
+    rt::Image b = a;
+    at(b, 401, 302, 1) += 2;  // one pixel, just over the tolerance
+    const rt::Image equal = shrink(rt::diff_heatmap(a, a), 4);
+    // Alone, it is lost when the page scales the heatmap down.
+    EXPECT_EQ(standing_out(shrink(rt::diff_heatmap(a, b), 4), equal), 0u);
+    // Ringed, it stands out: a ring of some dozens of pixels around it.
+    rt::Image heat = rt::diff_heatmap(a, b);
+    EXPECT_EQ(rt::ring_small_spots(heat, a, b, 1), 1u);
+    const rt::Image small = shrink(heat, 4);
+    EXPECT_GE(standing_out(small, equal), 20u);
+    // Only near the pixel, and never over it: it keeps the ramp's colour.
+    for (int y = 0; y < small.height; ++y)
+        for (int x = 0; x < small.width; ++x) {
+            if (std::abs(x - 100) > 5 || std::abs(y - 75) > 5) {
+                ASSERT_EQ(px(small, x, y, 1), px(equal, x, y, 1)) << x << "," << y;
+            }
+        }
+    EXPECT_EQ(px(heat, 401, 302, 0), 255);
+    EXPECT_EQ(px(heat, 401, 302, 1), 255);
+    EXPECT_EQ(px(heat, 401, 302, 2), 0);
+    // Two spots near each other get a ring each; a crowd of spots none, as rings would
+    // cover it.
+    rt::Image two = b;
+    at(two, 421, 302, 0) += 5;
+    rt::Image two_heat = rt::diff_heatmap(a, two);
+    EXPECT_EQ(rt::ring_small_spots(two_heat, a, two, 1), 2u);
+    rt::Image crowd = a;
+    for (int y = 300; y < 340; y += 4)
+        for (int x = 300; x < 340; x += 4) at(crowd, x, y, 0) ^= 0x80;
+    rt::Image crowd_heat = rt::diff_heatmap(a, crowd);
+    EXPECT_EQ(rt::ring_small_spots(crowd_heat, a, crowd, 1), 0u);
+    // A spot large enough to be seen gets no ring; rtdiff's heatmap is the ringed one.
+    rt::Image big = a;
+    for (int y = 100; y < 140; ++y)
+        for (int x = 100; x < 140; ++x) at(big, x, y, 0) ^= 0x80;
+    rt::Image big_heat = rt::diff_heatmap(a, big);
+    EXPECT_EQ(rt::ring_small_spots(big_heat, a, big, 1), 0u);
+    EXPECT_EQ(big_heat.rgb, rt::diff_heatmap(a, big).rgb);
+    const rt::ImageComparison c = rt::compare_images(a, b);
+    EXPECT_EQ(rt::heatmap_with_legend(a, b, c).rgb, rt::add_heatmap_legend(heat, 1, c.max_diff).rgb);
 }
 
 TEST(BitmapFont, GlyphsAreDistinctAndLowerCaseIsUpper) {
@@ -269,21 +334,6 @@ TEST(ImageDiff, ReadImageReadsPngAndPpmAndNamesBadFiles) {
 }
 
 // ./rtdiff itself.
-
-class RtdiffTool : public ::testing::Test {
-protected:
-    void SetUp() override {
-        a_ = gradient(20, 10);
-        b_ = a_;
-        at(b_, 13, 7, 0) += 2;
-        rt::write_png(a_, tmp_ / "a.png");
-        rt::write_png(b_, tmp_ / "b.png");
-        rt::write_ppm(a_, tmp_ / "a.ppm");
-    }
-    RunResult run(const std::vector<std::string>& args) { return run_program(rtdiff_path(), args, tmp_.path(), 60); }
-    TempDir tmp_;
-    rt::Image a_, b_;
-};
 
 TEST_F(RtdiffTool, IdenticalImagesPrintZeroAndInf) {
     const RunResult r = run({"a.png", "a.ppm"});
@@ -349,11 +399,14 @@ TEST_F(RtdiffTool, HeatmapIsWritten) {
     EXPECT_EQ(r.exit_code, 0) << r.err;
     rt::Image h;
     ASSERT_TRUE(load_png(tmp_ / "h.png", h));
-    // The heatmap with its legend below it, for this pair's largest difference.
-    const rt::Image heat = rt::diff_heatmap(a_, b_);
+    // The heatmap, its one off pixel ringed, with its legend below it, for this pair's
+    // largest difference.
+    rt::Image heat = rt::diff_heatmap(a_, b_);
+    EXPECT_EQ(rt::ring_small_spots(heat, a_, b_, 1), 1u);
     EXPECT_TRUE(starts_with_image(h, heat));
     EXPECT_GT(h.height, heat.height);
     EXPECT_EQ(h.rgb, rt::add_heatmap_legend(heat, 1, 2).rgb);
+    EXPECT_EQ(h.rgb, rt::heatmap_with_legend(a_, b_, rt::compare_images(a_, b_)).rgb);
 }
 
 TEST_F(RtdiffTool, BadInputIsOneLineAndExitOne) {
@@ -436,35 +489,6 @@ TEST_F(RtdiffTool, FoldersCompareByNameWorstFirst) {
     EXPECT_TRUE(contains(over.out, "1 over --fail-above")) << over.out;
 }
 
-namespace {
-
-// The %XX escapes of a URL path decoded.
-std::string url_decode(const std::string& u) {
-    std::string out;
-    for (size_t i = 0; i < u.size(); ++i) {
-        if (u[i] == '%' && i + 2 < u.size()) {
-            out += char(std::stoi(u.substr(i + 1, 2), nullptr, 16));
-            i += 2;
-        } else {
-            out += u[i];
-        }
-    }
-    return out;
-}
-
-// Every value of attribute `attr` ("src", "href") in `page`.
-std::vector<std::string> attributes(const std::string& page, const std::string& attr) {
-    std::vector<std::string> out;
-    const std::string key = attr + "=\"";
-    for (size_t at = page.find(key); at != std::string::npos; at = page.find(key, at + 1)) {
-        const size_t begin = at + key.size();
-        out.push_back(page.substr(begin, page.find('"', begin) - begin));
-    }
-    return out;
-}
-
-}  // namespace
-
 TEST_F(RtdiffTool, HtmlPageListsWorstFirstAndLinksExistingFiles) {
     TempDir a, b;
     write_folders(a_, b_, a, b, "one off.png");  // a space: the links must be encoded
@@ -494,7 +518,7 @@ TEST_F(RtdiffTool, HtmlPageListsWorstFirstAndLinksExistingFiles) {
     // The heatmap is the one rt::diff_heatmap draws, with its legend; the worst pixel is listed.
     rt::Image h;
     ASSERT_TRUE(load_png(tmp_ / "page/heatmaps/one off.png", h));
-    EXPECT_EQ(h.rgb, rt::add_heatmap_legend(rt::diff_heatmap(a_, b_), 1, 2).rgb);
+    EXPECT_EQ(h.rgb, rt::heatmap_with_legend(a_, b_, rt::compare_images(a_, b_)).rgb);
     EXPECT_TRUE(contains(page, "<li>13,7 off by 2: A ")) << page;
 }
 
@@ -517,7 +541,7 @@ TEST_F(RtdiffTool, HtmlPageForTwoImages) {
     EXPECT_EQ(url_decode(srcs[1]), "../kb.png");
     rt::Image h;
     ASSERT_TRUE(load_png(tmp_ / "p2/" + url_decode(srcs[2]), h));
-    EXPECT_EQ(h.rgb, rt::add_heatmap_legend(rt::diff_heatmap(a, b), 1, 30).rgb);
+    EXPECT_EQ(h.rgb, rt::heatmap_with_legend(a, b, rt::compare_images(a, b)).rgb);
     // Images of different sizes: bad input, no page.
     rt::write_png(gradient(11, 8), tmp_ / "wide.png");
     EXPECT_EQ(run({"--html", "p3", "ka.png", "wide.png"}).exit_code, 1);

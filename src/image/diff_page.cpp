@@ -76,34 +76,44 @@ std::string worst_list(const std::vector<PixelDiff>& worst) {
 std::string diff_page_html(const std::string& a_label, const std::string& b_label, int tolerance,
                            const std::vector<DiffPageRow>& rows, const std::vector<std::string>& only_a,
                            const std::vector<std::string>& only_b) {
-    std::string p =
-        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>rtdiff: " + html(a_label) + " vs " +
-        html(b_label) +
-        "</title>\n<style>\n"
-        "body{font-family:sans-serif;margin:1em 2em;background:#fafafa}\n"
-        "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:2px 8px;text-align:right}\n"
-        "td:first-child,th:first-child,td.l{text-align:left}tr.bad td{background:#fdd}\n"
-        ".row{display:flex;gap:12px;align-items:flex-start}figure{margin:0}\n"
-        "figure img{max-width:420px;image-rendering:pixelated;border:1px solid #999}\n"
-        ".none{width:200px;height:100px;border:1px dashed #999;display:flex;align-items:center;"
-        "justify-content:center;color:#999}\n"
-        "</style></head><body>\n<h1>rtdiff</h1>\n<p>A: <code>" +
-        html(a_label) + "</code><br>B: <code>" + html(b_label) + "</code><br>" + std::to_string(rows.size()) +
-        (rows.size() > 1 ? " compared, worst first" : " compared") +
-        "; a pixel is off when some channel differs by more than " + std::to_string(tolerance) +
-        ". Heatmap: A dimmed where equal, dark blue within the tolerance, yellow to red above it; "
-        "its legend is the strip below it.</p>\n"
-        "<table id=summary><tr><th>image</th><th>size</th><th>max</th><th>mean</th><th>% off</th><th>PSNR</th>"
-        "<th>box</th></tr>\n";
+    bool verdicts = false;
+    for (const DiffPageRow& r : rows) verdicts = verdicts || !r.verdict.empty();
+    const std::string verdict_th = verdicts ? "<th>verdict</th>" : "";
+    std::string p = "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\"><title>rtdiff: " + html(a_label) + " vs " +
+                    html(b_label) +
+                    "</title>\n<style>\n"
+                    "body{font-family:sans-serif;margin:1em 2em;background:#fafafa}\n"
+                    "table{border-collapse:collapse}td,th{border:1px solid #ccc;padding:2px 8px;text-align:right}\n"
+                    "td:first-child,th:first-child,td.l{text-align:left}tr.bad td{background:#fdd}\n"
+                    ".row{display:flex;gap:12px;align-items:flex-start}figure{margin:0}\n"
+                    "figure img{max-width:420px;image-rendering:pixelated;border:1px solid #999}\n"
+                    ".none{width:200px;height:100px;border:1px dashed #999;display:flex;align-items:center;"
+                    "justify-content:center;color:#999}\n"
+                    "</style></head><body>\n<h1>rtdiff</h1>\n<p>A: <code>" +
+                    html(a_label) + "</code><br>B: <code>" + html(b_label) + "</code><br>" +
+                    std::to_string(rows.size()) +
+                    (verdicts          ? " scenes, worst first"
+                     : rows.size() > 1 ? " compared, worst first"
+                                       : " compared") +
+                    "; a pixel is off when some channel differs by more than " + std::to_string(tolerance) +
+                    ". Heatmap: A dimmed where equal, dark blue within the tolerance, yellow to red above it; "
+                    "its legend is the strip below it.</p>\n"
+                    "<table id=summary><tr><th>image</th>" +
+                    verdict_th +
+                    "<th>size</th><th>max</th><th>mean</th><th>% off</th><th>PSNR</th>"
+                    "<th>box</th></tr>\n";
     for (size_t i = 0; i < rows.size(); ++i) {
         const DiffPageRow& r = rows[i];
-        const std::string name = "<a href=\"#img" + std::to_string(i) + "\">" + html(r.name) + "</a>";
+        const std::string name = "<a href=\"#img" + std::to_string(i) + "\">" + html(r.name) + "</a>" +
+                                 (verdicts ? "</td><td class=l>" + html(r.verdict) : "");
+        const bool bad = r.failed || (!r.error.empty() && !r.skipped);
+        p += bad ? "<tr class=bad><td>" : "<tr><td>";
         if (!r.error.empty()) {
-            p += "<tr class=bad><td>" + name + "</td><td class=l colspan=6>" + html(r.error) + "</td></tr>\n";
+            p += name + "</td><td class=l colspan=6>" + html(r.error) + "</td></tr>\n";
             continue;
         }
-        p += "<tr><td>" + name + "</td><td>" + std::to_string(r.c.width) + "x" + std::to_string(r.c.height) +
-             "</td><td>" + std::to_string(r.c.max_diff) + "</td><td>" + fmt("%.4f", r.c.mean_diff) + "</td><td>" +
+        p += name + "</td><td>" + std::to_string(r.c.width) + "x" + std::to_string(r.c.height) + "</td><td>" +
+             std::to_string(r.c.max_diff) + "</td><td>" + fmt("%.4f", r.c.mean_diff) + "</td><td>" +
              fmt("%.4f", r.c.pct_over) + "</td><td>" + psnr_text(r.c.psnr) + "</td><td>" + box_text(r.c) +
              "</td></tr>\n";
     }

@@ -1,5 +1,7 @@
-// rtdiff: compares two images, or every image of the same name in two folders, with
-// the measure the conformance tests use (rt/image/image_diff.h; issue 15).
+// rtdiff: compares two images, every image of the same relative path in two folders, or
+// every image a course manifest names with its reference, with the measure the
+// conformance tests use (rt/image/image_diff.h; issue 15). The manifest mode is in
+// rtdiff_manifest.cpp.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -15,23 +17,32 @@
 #include "rt/image/image.h"
 #include "rt/image/image_diff.h"
 #include "rt/io/atomic_file.h"
+#include "rtdiff.h"
 
 namespace fs = std::filesystem;
 
 namespace {
 
+using rtdiff::Options;
+
 const rt::cli::Program kProgram{
     "rtdiff", "rtdiff 1.0",
     "usage: rtdiff [--tolerance N] [--heatmap OUT] [--html DIR] [--fail-above P]\n"
-    "              [--scene FILE [--camera N]] [--only-common] A B",
-    "Compares image A with image B (PNG or PPM), or every image of the same name in folders A\n"
-    "and B: size, largest and mean channel difference, the pixels with some channel off by\n"
-    "more than the tolerance (count, share and bounding box) and PSNR; then where: the 5\n"
-    "pixels that differ most (x,y as raytracer --trace takes them, both values) and the\n"
-    "command that traces the worst (folders: the worst pixel of each pair that differs).\n"
-    "Images in one folder only are not compared; one line per folder names them.\n",
+    "              [--scene FILE [--camera N]] [--only-common] A B\n"
+    "       rtdiff --manifest MANIFEST.tsv [--tolerance N] [--heatmap DIR] [--html DIR]\n"
+    "              [--fail-above P] OUTDIR",
+    "Compares image A with image B (PNG or PPM), or every image of the same relative path in\n"
+    "folders A and B and their subfolders: size, largest and mean channel difference, the\n"
+    "pixels with some channel off by more than the tolerance (count, share and bounding box)\n"
+    "and PSNR; then where: the 5 pixels that differ most (x,y as raytracer --trace takes them,\n"
+    "both values) and the command that traces the worst (folders: the worst pixel of each pair\n"
+    "that differs). Images in one folder only are not compared; one line per folder names them.\n"
+    "--manifest: each image the course's MANIFEST.tsv names, found in OUTDIR or a subfolder,\n"
+    "against its reference: one row per scene (pass, FAIL over --fail-above, default 0.2%;\n"
+    "missing; ambiguous; skipped when the scene's inputs are incomplete) and a total.\n",
     "exit status: 0 compared (and within --fail-above); 1 bad input, a pair of folders' images\n"
-    "that could not be compared, no image in both folders, or over --fail-above; 2 usage error.\n"
+    "that could not be compared, no image in both folders, or over --fail-above; manifests: a\n"
+    "malformed line, or a scene that is not a pass (skipped ones aside); 2 usage error.\n"
     "Images in one folder only do not change it."};
 
 // How many of the worst pixels two images' comparison lists.
@@ -39,56 +50,10 @@ constexpr size_t kWorstPixels = 5;
 // How many names the line of the images in one folder only lists before "...".
 constexpr size_t kOnlyNames = 4;
 
-struct Options {
-    int tolerance = 1;
-    std::string heatmap;               // two images: a PNG; two folders: a folder
-    std::optional<double> fail_above;  // percent of pixels
-    std::string html;                  // a folder for index.html and its heatmaps
-    std::string scene;                 // two images: the scene of the trace command, when known
-    std::optional<long> camera;        // two images: the trace command's --camera
-    bool only_common = false;          // two folders: say nothing of images in one folder only
-};
-
-// `s` as one shell word: as it is when it holds only characters no shell treats specially,
-// else in single quotes.
-std::string shell_word(const std::string& s) {
-    const bool plain = !s.empty() && s.find_first_not_of(
-                                         "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz"
-                                         "0123456789_./+,=:@%-") == std::string::npos;
-    if (plain) return s;
-    std::string out = "'";
-    for (char c : s) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
-}
-
-// The command that traces pixel `p`: "./raytracer --trace X,Y [--camera N] SCENE", the
-// scene a placeholder unless --scene named it.
-std::string trace_command(const rt::PixelDiff& p, const Options& o) {
-    std::string cmd = "./raytracer --trace " + std::to_string(p.x) + "," + std::to_string(p.y);
-    if (o.camera) cmd += " --camera " + std::to_string(*o.camera);
-    return cmd + " " + (o.scene.empty() ? "<scene.json>" : shell_word(o.scene));
-}
-
-void create_folder(const std::string& dir) {
-    std::error_code ec;
-    fs::create_directories(dir, ec);
-    if (ec) throw rt::InputError(dir + ": cannot create the folder: " + ec.message());
-}
-
-// The --html page's heatmap of image `name`, relative to the page.
-std::string page_heatmap(const std::string& name) { return "heatmaps/" + fs::path(name).stem().string() + ".png"; }
-
-// `file` relative to folder `dir` (both existing), as a page in `dir` links to it.
-std::string relative_to(const std::string& file, const std::string& dir) {
-    return fs::weakly_canonical(file).lexically_relative(fs::weakly_canonical(dir)).generic_string();
-}
-
-// The heatmap as rtdiff writes it: with its legend.
-rt::Image heatmap(const rt::Image& a, const rt::Image& b, const rt::ImageComparison& c) {
-    return rt::add_heatmap_legend(rt::diff_heatmap(a, b, c.tolerance), c.tolerance, c.max_diff);
-}
-
-bool over_limit(const rt::ImageComparison& c, const Options& o) { return o.fail_above && c.pct_over > *o.fail_above; }
+using rtdiff::create_folder;
+using rtdiff::over_limit;
+using rtdiff::page_heatmap;
+using rtdiff::relative_to;
 
 // One pair of images; exit status 0 or 1.
 int compare_files(const std::string& a_path, const std::string& b_path, const Options& o) {
@@ -106,10 +71,10 @@ int compare_files(const std::string& a_path, const std::string& b_path, const Op
     if (!worst.empty()) {
         std::printf("worst pixels (x,y as raytracer --trace takes them), largest channel difference first:\n");
         for (const rt::PixelDiff& p : worst) std::printf("  %s\n", rt::pixel_text(p).c_str());
-        std::printf("trace the worst: %s\n", trace_command(worst.front(), o).c_str());
+        std::printf("trace the worst: %s\n", rtdiff::trace_command(worst.front(), o.scene, o.camera).c_str());
     }
     if (!o.heatmap.empty() || !o.html.empty()) {
-        const rt::Image heat = heatmap(a, b, c);
+        const rt::Image heat = rt::heatmap_with_legend(a, b, c);
         if (!o.heatmap.empty()) rt::write_png(heat, o.heatmap);
         if (!o.html.empty()) {
             // The page of one row, named as A is.
@@ -127,24 +92,6 @@ int compare_files(const std::string& a_path, const std::string& b_path, const Op
         return 1;
     }
     return 0;
-}
-
-bool is_image_name(const fs::path& p) {
-    const rt::ImageFormat f = rt::image_format_of(p.string());
-    return f == rt::ImageFormat::Png || f == rt::ImageFormat::Ppm;
-}
-
-// The image file names directly in `dir`. Throws rt::InputError when it cannot be read.
-std::set<std::string> image_names(const std::string& dir) {
-    std::set<std::string> names;
-    std::error_code ec;
-    fs::directory_iterator it(dir, ec);
-    for (; !ec && it != fs::directory_iterator(); it.increment(ec)) {
-        std::error_code ec2;
-        if (it->is_regular_file(ec2) && is_image_name(it->path())) names.insert(it->path().filename().string());
-    }
-    if (ec) throw rt::InputError(dir + ": cannot read the folder: " + ec.message());
-    return names;
 }
 
 struct Row {
@@ -186,7 +133,7 @@ void write_page(const std::string& a_dir, const std::string& b_dir, const Option
 
 // Two folders; exit status 0 or 1.
 int compare_dirs(const std::string& a_dir, const std::string& b_dir, const Options& o) {
-    const std::set<std::string> a_names = image_names(a_dir), b_names = image_names(b_dir);
+    const std::set<std::string> a_names = rtdiff::image_files(a_dir, o), b_names = rtdiff::image_files(b_dir, o);
     if (!o.heatmap.empty()) create_folder(o.heatmap);
     if (!o.html.empty()) create_folder((fs::path(o.html) / "heatmaps").string());
     std::vector<Row> rows;
@@ -211,12 +158,8 @@ int compare_dirs(const std::string& a_dir, const std::string& b_dir, const Optio
                           std::to_string(b.width) + "x" + std::to_string(b.height);
             else
                 r.worst = rt::worst_pixels(a, b, 1);
-            if (r.c.same_size && (!o.heatmap.empty() || !o.html.empty())) {
-                const rt::Image heat = heatmap(a, b, r.c);
-                if (!o.heatmap.empty())
-                    rt::write_png(heat, (fs::path(o.heatmap) / fs::path(n).stem()).string() + ".png");
-                if (!o.html.empty()) rt::write_png(heat, (fs::path(o.html) / page_heatmap(n)).string());
-            }
+            if (r.c.same_size && (!o.heatmap.empty() || !o.html.empty()))
+                rtdiff::write_heatmaps(rt::heatmap_with_legend(a, b, r.c), n, o);
         } catch (const rt::InputError& e) {
             r.error = e.what();
         }
@@ -283,10 +226,11 @@ int main(int argc, char** argv) {
     cli::add_whole(app, "--tolerance", "N",
                    "a pixel is off when some channel differs by more than N levels (default 1)", o.tolerance, 0, 255);
     cli::add_text(app, "--heatmap", "OUT",
-                  "write where and how much the images differ as a PNG, its legend below it (two folders: a "
-                  "folder of them)",
+                  "write where and how much the images differ as a PNG, its legend below it (folders and "
+                  "--manifest: a folder of them)",
                   o.heatmap, "a file name");
-    cli::add_value(app, "--fail-above", "P", "exit status 1 when more than P% of the pixels are off",
+    cli::add_value(app, "--fail-above", "P",
+                   "exit status 1 when more than P% of the pixels are off (--manifest: a scene's FAIL, default 0.2)",
                    [&o](const std::string& v) {
                        o.fail_above = cli::number("--fail-above", v, "a percentage from 0 to 100", percent);
                    });
@@ -300,10 +244,27 @@ int main(int argc, char** argv) {
                    [&o](const std::string& v) { o.camera = cli::whole_number("--camera", v, 1, 1 << 30); });
     app.add_flag("--only-common", o.only_common,
                  "two folders: compare the images in both and say nothing of those in one folder only");
-    cli::add_two_files(app, files, "needs two images or two folders");
+    cli::add_text(app, "--manifest", "FILE",
+                  "compare each image the course's MANIFEST.tsv names, found in OUTDIR or its subfolders, with "
+                  "its reference (relative to the folder two above the manifest's)",
+                  o.manifest, "a file name");
+    app.add_option("files", files);
+    app.final_callback([&files, &o] {
+        const size_t want = o.manifest.empty() ? 2 : 1;
+        if (files.size() < want)
+            cli::usage_error(o.manifest.empty() ? "needs two images or two folders" : "--manifest needs OUTDIR");
+        if (files.size() > want)
+            cli::usage_error(o.manifest.empty() ? "too many files" : "--manifest takes one folder");
+    });
     if (const auto status = cli::parse(app, kProgram, argc, argv)) return *status;
 
     try {
+        if (!o.manifest.empty()) {
+            if (!o.scene.empty() || o.camera || o.only_common)
+                return cli::report_usage_error(kProgram,
+                                               "--scene, --camera and --only-common do not go with --manifest");
+            return rtdiff::compare_manifest(files[0], o);
+        }
         const bool a_dir = is_dir(files[0]), b_dir = is_dir(files[1]);
         if (a_dir && b_dir) {
             if (!o.scene.empty() || o.camera)

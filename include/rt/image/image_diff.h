@@ -54,16 +54,30 @@ std::string pixel_text(const PixelDiff& p);
 // to red (64 levels or more over). Requires same-size images (compare_images().same_size).
 Image diff_heatmap(const Image& a, const Image& b, int tolerance = 1);
 
+// Draws a cyan ring around each small spot of off pixels of `heat` (diff_heatmap's image of
+// `a` and `b`), so that a single off pixel stays visible on a page that shows the heatmap
+// scaled down: around each 8-connected group of pixels over the tolerance whose box is
+// smaller than max(3, L / 160) pixels each way, a ring of radius max(6, L / 50) (more by half
+// the box) and thickness max(1, L / 200), L the image's larger side, unless more than 8 off
+// pixels in all lie within two ring radii of it (a crowd of rings would hide the colours).
+// The rings cover equal and within-tolerance pixels only, never an off pixel. Returns the
+// number of rings.
+size_t ring_small_spots(Image& heat, const Image& a, const Image& b, int tolerance);
+
 // The narrowest heatmap with a legend: a narrower heatmap is padded on the right to this
 // width, so that the legend's text stays readable at its smallest size.
 constexpr int kHeatmapLegendMinWidth = 256;
 
 // `heat` (diff_heatmap's image) with a legend strip below it, as rtdiff writes heatmaps:
 // the largest difference and the tolerance, the colours as swatches and a ramp labelled in
-// levels (0; 1 to the tolerance; just over it to 64 over), a mark at `max_diff`, and what
-// each colour means. `heat` is kept unchanged at the top left; the image is
+// levels (0; 1 to the tolerance; just over it to 64 over), a mark at `max_diff`, what
+// each colour means and what a ring (ring_small_spots) means. `heat` is kept unchanged at the top left; the image is
 // max(heat.width, kHeatmapLegendMinWidth) wide, and white outside `heat` but for the legend.
 Image add_heatmap_legend(const Image& heat, int tolerance, int max_diff);
+
+// The heatmap as rtdiff writes it: diff_heatmap at c's tolerance, its small spots ringed,
+// and the legend for c's largest difference. `c` is compare_images(a, b, tolerance).
+Image heatmap_with_legend(const Image& a, const Image& b, const ImageComparison& c);
 
 // "39.18 dB", or "inf" for identical images.
 std::string psnr_text(double psnr);
@@ -78,10 +92,14 @@ struct DiffPageRow {
     std::string error;             // not empty: the pair could not be compared (sizes, unreadable)
     std::vector<PixelDiff> worst;  // worst_pixels of the pair
     std::string a_link, b_link, heatmap_link;
+    std::string verdict = "";  // rtdiff --manifest: "pass", "FAIL", "missing", ..., a column of its own
+    bool failed = false;       // marked as failed on the page (rows with an error always are)
+    bool skipped = false;      // not compared and no failure (a manifest's scene with incomplete inputs)
 };
 
 // The HTML page of a comparison (rtdiff --html; two images are one row): a table of every
-// row in the order given (rtdiff: worst first), then the images found in one folder only,
+// row in the order given (rtdiff: worst first; a verdict column when some row has one),
+// then the images found in one folder only,
 // then per row its worst pixels and the two images and the heatmap side by side.
 // `a_label`, `b_label`: the folders (or the images).
 std::string diff_page_html(const std::string& a_label, const std::string& b_label, int tolerance,
