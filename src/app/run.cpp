@@ -14,6 +14,7 @@
 
 #include "progress.h"
 #include "rt/cli/options.h"
+#include "rt/core/count_text.h"
 #include "rt/core/error.h"
 #include "rt/geometry/scene.h"
 #include "rt/image/image.h"
@@ -26,15 +27,12 @@ namespace rt {
 
 namespace {
 
-// "1 sphere", "3 spheres".
-std::string count_of(size_t n, const char* noun) { return std::to_string(n) + " " + noun + (n == 1 ? "" : "s"); }
-
 // The summary line's counts: what the BVH holds, every bounded kind ("5 triangles, 3 spheres").
 std::string bvh_counts(const SceneFigures& f) {
     std::string s = count_of(f.shapes[size_t(ShapeKind::Triangle)], "triangle");
     for_each_shape([&](auto k) {
         using S = decltype(k);
-        if constexpr (S::kBounded) s += ", " + count_of(f.shapes[size_t(kind_of<S>)], S::kNoun);
+        if constexpr (S::kBounded) s += ", " + count_of(f.shapes[size_t(kind_of<S>)], S::kNoun, S::kNouns);
     });
     return s;
 }
@@ -278,7 +276,7 @@ int run_trace(const std::string& scene_path, const RunOptions& o, const PixelTra
     const std::vector<Camera>& cameras = s->scene.setup.cameras;
     if (req.camera < 1 || req.camera > cameras.size())
         throw UsageError("--camera " + std::to_string(req.camera) + ": " + scene_path + " has " +
-                         std::to_string(cameras.size()) + " camera" + (cameras.size() == 1 ? "" : "s"));
+                         count_of(cameras.size(), "camera"));
     const Camera& cam = cameras[req.camera - 1];
     if (req.x < 0 || req.y < 0 || req.x >= cam.width || req.y >= cam.height)
         throw UsageError("--trace " + std::to_string(req.x) + "," + std::to_string(req.y) + ": outside the " +
