@@ -55,12 +55,28 @@ struct LoadedScene {
     size_t warnings = 0;  // warnings its loading raised (the summary line counts them)
 };
 
+// A warning as the error --strict makes of it: what is wrong, without what the renderer
+// would have done instead (the loader's and load_once's wordings), and why it is an error.
+std::string strict_error(std::string w) {
+    static const std::pair<const char*, const char*> kInstead[] = {
+        {": unknown key ignored", ": unknown key"},
+        {", the first 4 used (left right bottom top)", " (expected 4: left right bottom top)"},
+        {": skipped ", ": "},  // "skipped 2 degenerate triangles"
+    };
+    for (const auto& [instead, fact] : kInstead)
+        if (const size_t at = w.find(instead); at != std::string::npos) {
+            w.replace(at, std::char_traits<char>::length(instead), fact);
+            break;
+        }
+    return w + "; --strict makes it an error";
+}
+
 // Reports the warnings of a scene: on stderr as "warning: ..." unless quiet; under
 // --strict as "error: ..." lines, and then the scene is bad input (returns false).
 bool report_warnings(const std::vector<std::string>& warnings, const RunOptions& o) {
     for (const std::string& w : warnings) {
         if (o.strict)
-            cli::print_error(w + " (--strict)");
+            cli::print_error(strict_error(w));
         else if (!o.quiet)
             std::fprintf(stderr, "warning: %s\n", w.c_str());
     }
