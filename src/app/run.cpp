@@ -179,8 +179,8 @@ ImageRecord render_camera(const std::string& scene_path, const LoadedScene& s, s
     RenderOptions ropt = o.render;
     app::ProgressLine progress(o.progress && !o.quiet && app::stderr_is_terminal());
     if (progress.enabled()) ropt.progress = [&progress](int done, int total) { progress.update(done, total); };
-    ImageRecord r{scene_path, out, c + 1, cam.width,     cam.height, s.figures, o.repeat,
-                  {},         {},  {},    o.render.cull, o.bvh,      0};
+    ImageRecord r{scene_path, out, c + 1, cam.width,     cam.height,          s.figures, o.repeat,
+                  {},         {},  {},    o.render.cull, o.render.min_weight, o.bvh,     0};
     std::vector<double> renders;
     Image img;
     for (int run = 0; run < o.repeat; ++run) {
