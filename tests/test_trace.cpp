@@ -57,11 +57,6 @@ std::vector<std::string> official_scenes() {
     return out;
 }
 
-#define SKIP_WITHOUT_SHARED(scenes)                                                                     \
-    if ((scenes).empty())                                                                               \
-    GTEST_SKIP() << "*** SKIPPED: the course's shared folder (or its MANIFEST.tsv) was not found; set " \
-                    "RT_SHARED_DIR ***"
-
 std::vector<uint8_t> pixel_of(const rt::Image& img, int x, int y) {
     const size_t at = (size_t(y) * size_t(img.width) + size_t(x)) * 3;
     return {img.rgb[at], img.rgb[at + 1], img.rgb[at + 2]};
@@ -111,8 +106,9 @@ const char* const kPrismScene = R"({"Scene": {
 // ---- The traced pixel is the rendered pixel -------------------------------------------
 
 TEST(Trace, TracedPixelsEqualTheRenderInEveryOfficialScene) {
+    SKIP_UNLESS_SHARED("the official scenes' traces");
     const std::vector<std::string> scenes = official_scenes();
-    SKIP_WITHOUT_SHARED(scenes);
+    ASSERT_FALSE(scenes.empty()) << shared_dir() << "/scenes/hw1/MANIFEST.tsv lists no complete scene";
     std::mt19937 rng(15);
     size_t traced = 0;
     for (const std::string& path : scenes) {
@@ -139,8 +135,9 @@ TEST(Trace, TracedPixelsEqualTheRenderInEveryOfficialScene) {
 }
 
 TEST(Trace, CommandLineTracePixelEqualsTheWrittenImageInEveryOfficialScene) {
+    SKIP_UNLESS_SHARED("the official scenes' traces");
     const std::vector<std::string> scenes = official_scenes();
-    SKIP_WITHOUT_SHARED(scenes);
+    ASSERT_FALSE(scenes.empty()) << shared_dir() << "/scenes/hw1/MANIFEST.tsv lists no complete scene";
     std::mt19937 rng(1507);
     TempDir tmp;
     for (const std::string& path : scenes) {
