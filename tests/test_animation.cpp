@@ -140,15 +140,21 @@ TEST(Animation, ShardsThroughGnuParallelAreTheWholeAnimation) {
     EXPECT_NE(read_text(tmp.path() + "/whole/" + want.front()), read_text(tmp.path() + "/whole/" + want.back()));
 }
 
+// Frames 0 .. n-1 (frame_<f>.json, drawing p.ply) written into `tmp`; their names in it.
+std::vector<std::string> write_frames(const TempDir& tmp, int n) {
+    write_text(tmp / "p.ply", pyramid_ply(false));
+    std::vector<std::string> names;
+    for (int f = 0; f < n; ++f) {
+        names.push_back("frame_" + std::to_string(f) + ".json");
+        write_text(tmp / names.back(), frame_scene(f));
+    }
+    return names;
+}
+
 TEST(Animation, FramesAndShardOptions) {
     TempDir tmp;
-    write_text(tmp / "p.ply", pyramid_ply(false));
     std::vector<std::string> scenes;
-    for (int f = 0; f < 4; ++f) {
-        const std::string name = "frame_" + std::to_string(f) + ".json";
-        write_text(tmp / name, frame_scene(f));
-        scenes.push_back(tmp / name);
-    }
+    for (const std::string& name : write_frames(tmp, 4)) scenes.push_back(tmp / name);
     auto run = [&](std::vector<std::string> args) {
         args.insert(args.end(), scenes.begin(), scenes.end());
         return run_raytracer(args);
@@ -158,13 +164,71 @@ TEST(Animation, FramesAndShardOptions) {
     EXPECT_EQ(list_files(tmp / "a"), (std::vector<std::string>{"frame_1.png", "frame_2.png"}));
     const RunResult none = run({"-o", tmp / "b", "--shard", "3/5", "--frames", "0:2"});
     EXPECT_EQ(none.exit_code, 0) << none.err;
-    EXPECT_TRUE(contains(none.err, "no frame to render")) << none.err;
+    EXPECT_EQ(split_lines(none.err),
+              std::vector<std::string>{
+                  "warning: no frame to render: 4 scene files given, none in this selection (frames 0:2, shard 3/5)"});
     for (const auto& bad : std::vector<std::vector<std::string>>{
              {"--shard", "3/3"}, {"--shard", "1"}, {"--frames", "5:2"}, {"--frames", "x:2"}, {"--shard", "0/0"}}) {
         const RunResult u = run(bad);
         EXPECT_EQ(u.exit_code, 2) << bad[0] << " " << bad[1] << "\n" << u.err;
         EXPECT_TRUE(contains(u.err, bad[0])) << u.err;
     }
+}
+
+// A wrong path fails every shard alike, before anything is rendered, whether or not the
+// file is among the shard's frames; a shard without a frame warns and succeeds.
+TEST(Animation, EveryShardChecksEveryFile) {
+    TempDir tmp;
+    const std::vector<std::string> scenes = write_frames(tmp, 3);
+    const auto run = [&](std::vector<std::string> args, const std::vector<std::string>& files) {
+        args.insert(args.end(), files.begin(), files.end());
+        return run_raytracer(args, tmp.path());
+    };
+    std::vector<std::string> with_missing = scenes;
+    with_missing.insert(with_missing.begin() + 1, "gone.json");
+    for (const char* shard : {"0/4", "1/4", "2/4", "3/4", "5/8"}) {
+        SCOPED_TRACE(shard);
+        const RunResult r = run({"-q", "-o", "out", "--shard", shard}, with_missing);
+        EXPECT_EQ(r.exit_code, 1) << r.err;
+        EXPECT_EQ(split_lines(r.err),
+                  std::vector<std::string>{"error: gone.json: cannot open: No such file or directory"});
+        EXPECT_FALSE(file_exists(tmp / "out")) << "a shard rendered before the check";
+    }
+    // --frames alone checks too; a folder is not a scene file.
+    const RunResult folder = run({"-o", "out", "--frames", "0:0"}, {scenes[0], "."});
+    EXPECT_EQ(folder.exit_code, 1) << folder.err;
+    EXPECT_EQ(split_lines(folder.err), std::vector<std::string>{"error: .: cannot open: Is a directory"});
+
+    // A pattern the shell matched to nothing, as GNU parallel's shell passes it on.
+    const RunResult which = run_program("/bin/sh", {"-c", "command -v parallel"});
+    ASSERT_EQ(which.exit_code, 0) << "GNU parallel is not installed (apt-get install parallel)";
+    std::string command = "cd " + tmp.path() + " && parallel --will-cite " + raytracer_path();
+    for (const std::string& a : raytracer_args({"-o", "out", "--shard", "{}/3"})) command += " " + a;
+    command += " 'raven/x/*.json' frame_0.json ::: 0 1 2";
+    const RunResult glob = run_program("/bin/sh", {"-c", command});
+    EXPECT_EQ(glob.exit_code, 3) << "every one of the 3 shards fails\n" << glob.err;
+    const std::string line =
+        "error: raven/x/*.json: cannot open: No such file or directory (no file matches this "
+        "pattern, so the shell passed it on unexpanded; relative paths start from " +
+        tmp.path() + ")";
+    EXPECT_EQ(split_lines(glob.err), std::vector<std::string>(3, line)) << glob.err;
+
+    // More shards than frames: the idle shards say so (an error under --strict), the others render.
+    const RunResult idle = run({"-o", "out", "--shard", "5/8"}, scenes);
+    EXPECT_EQ(idle.exit_code, 0) << idle.err;
+    EXPECT_EQ(split_lines(idle.err),
+              std::vector<std::string>{
+                  "warning: no frame to render: 3 scene files given, none in this selection (frames 0:, shard 5/8)"});
+    EXPECT_EQ(run({"-q", "-o", "out", "--shard", "5/8"}, scenes).err, "");
+    const RunResult strict = run({"--strict", "-o", "out", "--shard", "5/8"}, scenes);
+    EXPECT_EQ(strict.exit_code, 1) << strict.err;
+    EXPECT_EQ(split_lines(strict.err),
+              std::vector<std::string>{"error: no frame to render: 3 scene files given, none in this selection "
+                                       "(frames 0:, shard 5/8); --strict makes it an error"});
+    EXPECT_FALSE(file_exists(tmp / "out"));
+    const RunResult busy = run({"-q", "-o", "out", "--shard", "2/8"}, scenes);
+    EXPECT_EQ(busy.exit_code, 0) << busy.err;
+    EXPECT_EQ(list_files(tmp / "out"), std::vector<std::string>{"frame_2.png"});
 }
 
 }  // namespace

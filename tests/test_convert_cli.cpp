@@ -5,6 +5,7 @@
 // A build without pugixml or tinyobjloader (see mk/convert.mk) has none of this to test.
 #if !defined(RT_NO_XML) && !defined(RT_NO_OBJ)
 
+#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -87,6 +88,36 @@ TEST(ConvertCli, NumberOverflowIsTheSameMessageInBothPrograms) {
         EXPECT_EQ(split_lines(r->err), std::vector<std::string>{expected}) << r->err;
     }
     EXPECT_EQ(list_files(tmp.path()), std::vector<std::string>{"huge.json"});
+}
+
+// What rtconvert prints: counts with their nouns in the singular for one ("1 sphere"), and
+// the files written named alike, relative where the output's name is.
+TEST(ConvertCli, NotesCountInTheSingularAndWrittenPathsReadAlike) {
+    TempDir tmp;
+    write_text(tmp / "one.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    std::filesystem::create_directory(tmp / "out");
+    const RunResult in = run_program(rtconvert_path(), {"one.obj", "out/one.json"}, tmp.path());
+    ASSERT_EQ(in.exit_code, 0) << in.err;
+    EXPECT_TRUE(contains(in.err, "1 face (0 polygons fan-split) -> 1 triangle in 1 mesh\n")) << in.err;
+    size_t wrote = 0;
+    for (const std::string& line : split_lines(in.err))
+        if (line.rfind("wrote ", 0) == 0) {
+            ++wrote;
+            EXPECT_EQ(line.rfind("wrote out/one", 0), 0u) << line << "\n" << in.err;
+        }
+    EXPECT_EQ(wrote, 2u) << in.err;  // the scene and its PLY file
+
+    write_text(tmp / "k.json", R"({"Scene": {
+      "Cameras": {"Camera": {"Position": "0 0 5", "Gaze": "0 0 -1", "Up": "0 1 0", "NearPlane": "-1 1 -1 1",
+                             "NearDistance": "1", "ImageResolution": "8 8", "ImageName": "k.png"}},
+      "Materials": {"Material": {"AmbientReflectance": "1 1 1"}},
+      "VertexData": "-1 -1 0  1 -1 0  0 1 0  0 0 -3",
+      "Objects": {"Triangle": {"Material": "1", "Indices": "1 2 3"},
+                  "Sphere": {"Material": "1", "Center": "4", "Radius": "0.5"}}}})");
+    const RunResult out = run_program(rtconvert_path(), {"k.json", "out/k.obj"}, tmp.path());
+    ASSERT_EQ(out.exit_code, 0) << out.err;
+    EXPECT_TRUE(contains(out.err, "1 mesh (1 triangle), 1 sphere, 0 instances, 0 planes, 1 material\n")) << out.err;
+    EXPECT_TRUE(contains(out.err, "wrote out/k.obj\nwrote out/k.mtl\n")) << out.err;
 }
 
 #endif  // !defined(RT_NO_XML) && !defined(RT_NO_OBJ)

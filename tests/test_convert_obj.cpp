@@ -438,8 +438,8 @@ TEST(ObjExport, SceneToObjAndBack) {
 }
 
 TEST(ObjExport, OfficialXmlSceneExports) {
+    SKIP_UNLESS_SHARED("the official cornellbox.xml");
     const std::string root = shared_dir();
-    if (root.empty()) GTEST_SKIP() << "../shared not found (set RT_SHARED_DIR)";
     TempDir tmp;
     const std::string path = root + "/scenes/xml2021/cornellbox.xml";
     rt::convert_file(path, tmp / "cb.obj");

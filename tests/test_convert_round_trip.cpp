@@ -142,8 +142,8 @@ std::vector<std::string> official_scenes(const std::string& sub, const std::stri
 // ---- Round trips of the official scenes ------------------------------------------------
 
 TEST(ConvertRoundTrip, EveryOfficialJsonSceneThroughXml) {
+    SKIP_UNLESS_SHARED("the official JSON scenes");
     const std::vector<std::string> scenes = official_scenes("hw1", ".json");
-    if (scenes.empty()) GTEST_SKIP() << "../shared not found (set RT_SHARED_DIR)";
     EXPECT_GE(scenes.size(), 20u);
     for (const std::string& path : scenes) {
         SCOPED_TRACE(path);
@@ -159,8 +159,8 @@ TEST(ConvertRoundTrip, EveryOfficialJsonSceneThroughXml) {
 }
 
 TEST(ConvertRoundTrip, EveryOfficialXmlSceneThroughJson) {
+    SKIP_UNLESS_SHARED("the official XML scenes");
     const std::vector<std::string> scenes = official_scenes("xml2021", ".xml");
-    if (scenes.empty()) GTEST_SKIP() << "../shared not found (set RT_SHARED_DIR)";
     EXPECT_EQ(scenes.size(), 13u);
     for (const std::string& path : scenes) {
         SCOPED_TRACE(path);
@@ -201,8 +201,8 @@ TEST(ConvertRoundTrip, FilesInAnotherFolderKeepTheirPlyFiles) {
 }
 
 TEST(ConvertRoundTrip, OfficialPlySceneThroughTheCommandLine) {
+    SKIP_UNLESS_SHARED("the official PLY scene");
     const std::string root = shared_dir();
-    if (root.empty()) GTEST_SKIP() << "../shared not found (set RT_SHARED_DIR)";
     const std::string path = root + "/scenes/hw1/akif_uslu/ton_Roosendaal_smooth.json";
     TempDir tmp;
     RunResult r = run_program(rtconvert_path(), {"-q", path, tmp / "ton.xml"});

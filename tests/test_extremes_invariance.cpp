@@ -132,9 +132,10 @@ json read_showcase() {
 // (said loudly when they are not), and our showcase always.
 std::vector<std::pair<std::string, json>> test_scenes() {
     std::vector<std::pair<std::string, json>> out;
-    if (shared_dir().empty())
-        skipped_without_shared("the official scenes of this test");
-    else
+    if (shared_dir().empty()) {
+        const std::string message = skipped_without_shared("the official scenes of this test");
+        if (shared_required()) ADD_FAILURE() << message << " (CI=true: the shared folder is required)";
+    } else
         for (const char* n : {"spheres_mirror.json", "cornellbox_recursive.json", "spheres_with_plane.json"}) {
             if (file_exists(shared_dir() + "/scenes/hw1/" + n))
                 out.push_back({n, read_official(n)});

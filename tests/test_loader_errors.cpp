@@ -40,6 +40,45 @@ void expect_error(const std::string& text, const std::string& pointer, const std
 
 const std::string kCam = "/Scene/Cameras/Camera";
 
+// The message of the InputError parsing `text` throws ("" if none).
+std::string parse_error_of(const std::string& text) {
+    try {
+        (void)parse(text);
+    } catch (const rt::InputError& e) {
+        return e.what();
+    }
+    return "";
+}
+
+// A value followed by another value without a comma: nlohmann reports the place of the
+// second; the message adds where the comma is missing (after the end of the first, which
+// may span lines), and nothing when the mistake is another one.
+TEST(LoaderErrors, MissingCommaNamesTheLineBefore) {
+    const std::string members = "{\"Scene\": {\n  \"A\": \"1\"\n  \"B\": \"2\"\n}}";
+    EXPECT_EQ(parse_error_of(members),
+              kPath +
+                  ": parse error at line 3, column 5: syntax error while parsing object - unexpected string "
+                  "literal; expected '}' (missing ',' after line 2?)");
+    const std::string after_object = "{\"Scene\": {\n \"A\": {\n  \"x\": \"a \\\" b\"\n }\n\n \"B \\\" c\": 2}}";
+    EXPECT_NE(parse_error_of(after_object).find("(missing ',' after line 4?)"), std::string::npos)
+        << parse_error_of(after_object);
+    const std::string elements = "{\"Scene\": [\n 1\n 22\n]}";
+    EXPECT_NE(parse_error_of(elements).find("expected ']' (missing ',' after line 2?)"), std::string::npos)
+        << parse_error_of(elements);
+    for (const char* value : {"{}", "[1]", "true", "null", "false", "-1.5e3", "\"x\""}) {
+        const std::string text = std::string("{\"Scene\": {\"A\": \"1\"\n\n ") + value + "}}";
+        EXPECT_NE(parse_error_of(text).find("(missing ',' after line 1?)"), std::string::npos)
+            << value << ": " << parse_error_of(text);
+    }
+    // Not a missing comma: no hint.
+    for (const char* text :
+         {"{\"Scene\": {\"A\": \"1\",\n}}", "{\"Scene\" \"A\"}", "{\"Scene\": [1, 2", "{\"Scene\": {\"A\": tru}}"}) {
+        const std::string msg = parse_error_of(text);
+        EXPECT_NE(msg.find("parse error"), std::string::npos) << msg;
+        EXPECT_EQ(msg.find("missing ','"), std::string::npos) << msg;
+    }
+}
+
 TEST(LoaderErrors, MissingScene) {
     expect_error(R"({"Cameras": {}})", "/Scene");
     expect_error(R"([1, 2])", "/");

@@ -193,8 +193,8 @@ TEST(MisspeltKeys, StrictTurnsWarningsIntoErrors) {
     EXPECT_EQ(lines[0].rfind("clean.png: 8x8, ", 0), 0u) << lines[0];  // clean.json comes first
     EXPECT_FALSE(contains(lines[0], "warning")) << lines[0];
     EXPECT_EQ(lines[1],
-              "error: k.json: /Scene/Materials/Material/DiffuseReflectence: unknown key ignored (did "
-              "you mean DiffuseReflectance?) (--strict)");
+              "error: k.json: /Scene/Materials/Material/DiffuseReflectence: unknown key (did you mean "
+              "DiffuseReflectance?); --strict makes it an error");
     EXPECT_EQ(out.files, (std::vector<std::string>{"clean.json", "clean.png", "k.json"}));
 
     // Quiet does not hide a --strict error; without --strict the image is written.
@@ -208,21 +208,61 @@ TEST(MisspeltKeys, StrictTurnsWarningsIntoErrors) {
     EXPECT_EQ(lax.files, (std::vector<std::string>{"k.json", "k.png"}));
 }
 
-// A degenerate triangle is a warning too: counted, and an error under --strict.
-TEST(MisspeltKeys, StrictCoversDegenerateTriangles) {
+// A degenerate triangle and extra NearPlane numbers are warnings too: counted, and under
+// --strict errors that say what is wrong, not what the renderer would have done instead.
+TEST(MisspeltKeys, StrictCoversEveryKindOfWarning) {
+    struct Case {
+        const char *pointer, *value, *warning, *error;
+    };
+    const Case cases[] = {
+        {"/Scene/Objects/Triangle/Indices", "1 1 2", "warning: k.json: skipped 1 degenerate triangle",
+         "error: k.json: 1 degenerate triangle; --strict makes it an error"},
+        {"/Scene/Cameras/Camera/NearPlane", "-1 1 -1 1 3",
+         "warning: k.json: /Scene/Cameras/Camera/NearPlane: 5 numbers, the first 4 used (left right bottom top)",
+         "error: k.json: /Scene/Cameras/Camera/NearPlane: 5 numbers (expected 4: left right bottom top); --strict "
+         "makes it an error"},
+    };
+    for (const Case& c : cases) {
+        SCOPED_TRACE(c.pointer);
+        json scene = every_kind_scene();
+        scene[json::json_pointer(c.pointer)] = c.value;
+        Rendered lax;
+        render(lax, scene);
+        EXPECT_EQ(lax.r.exit_code, 0) << dump(lax.r);
+        EXPECT_TRUE(contains(lax.r.err, std::string(c.warning) + "\n")) << dump(lax.r);
+        EXPECT_TRUE(contains(lax.r.err, ", 1 warning\n")) << dump(lax.r);
+        Rendered strict;
+        render(strict, scene, {"--strict"});
+        EXPECT_EQ(strict.r.exit_code, 1) << dump(strict.r);
+        EXPECT_EQ(split_lines(strict.r.err), std::vector<std::string>{c.error});
+        EXPECT_EQ(strict.files, std::vector<std::string>{"k.json"});
+    }
+}
+
+// A mesh's Faces needs one of two keys: a near miss of either is named with the key meant.
+TEST(MisspeltKeys, FacesNamesTheNearMissOfItsKeys) {
+    const std::pair<const char*, const char*> cases[] = {{"_plyfile", "_plyFile"}, {"_dta", "_data"}};
+    for (const auto& [typo, meant] : cases) {
+        SCOPED_TRACE(typo);
+        json scene = every_kind_scene();
+        scene["Scene"]["Objects"]["Mesh"]["Faces"] = {{typo, "m.ply"}};
+        Rendered out;
+        render(out, scene);
+        EXPECT_EQ(out.r.exit_code, 1) << dump(out.r);
+        EXPECT_EQ(
+            split_lines(out.r.err),
+            std::vector<std::string>{std::string("error: k.json: /Scene/Objects/Mesh/Faces: needs _data or _plyFile "
+                                                 "(did you mean ") +
+                                     meant + "? found " + typo + ")"})
+            << dump(out.r);
+    }
+    // Nothing near: the plain message.
     json scene = every_kind_scene();
-    scene["Scene"]["Objects"]["Triangle"]["Indices"] = "1 1 2";
-    Rendered lax;
-    render(lax, scene);
-    EXPECT_EQ(lax.r.exit_code, 0) << dump(lax.r);
-    EXPECT_TRUE(contains(lax.r.err, "warning: k.json: skipped 1 degenerate triangle\n")) << dump(lax.r);
-    EXPECT_TRUE(contains(lax.r.err, ", 1 warning\n")) << dump(lax.r);
-    Rendered strict;
-    render(strict, scene, {"--strict"});
-    EXPECT_EQ(strict.r.exit_code, 1) << dump(strict.r);
-    EXPECT_EQ(split_lines(strict.r.err),
-              std::vector<std::string>{"error: k.json: skipped 1 degenerate triangle (--strict)"});
-    EXPECT_EQ(strict.files, std::vector<std::string>{"k.json"});
+    scene["Scene"]["Objects"]["Mesh"]["Faces"] = {{"Vertices", "1 2 3"}};
+    Rendered out;
+    render(out, scene);
+    EXPECT_EQ(split_lines(out.r.err),
+              std::vector<std::string>{"error: k.json: /Scene/Objects/Mesh/Faces: needs _data or _plyFile"});
 }
 
 // Every line a failing run prints on stderr starts "error: " (a bad scene, an unwritable

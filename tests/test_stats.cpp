@@ -99,6 +99,7 @@ TEST(Stats, JsonHasTheDocumentedFieldsWithPlausibleValues) {
     EXPECT_EQ(p.at("degenerate_skipped"), 0);
     EXPECT_EQ(im.at("threads"), 2);
     EXPECT_EQ(im.at("cull"), true);
+    EXPECT_EQ(im.at("min_weight"), 1e-4);  // the default
     EXPECT_EQ(im.at("max_recursion_depth"), 6);
     // The scene's epsilon as rt::Real holds it (1e-3 rounded to float in float).
     EXPECT_DOUBLE_EQ(im.at("shadow_ray_epsilon").get<double>(), double(rt::Real(1e-3)));

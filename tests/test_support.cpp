@@ -62,6 +62,11 @@ std::string skipped_without_shared(const std::string& what) {
     return msg;
 }
 
+bool shared_required() {
+    const char* ci = std::getenv("CI");
+    return ci && std::string(ci) == "true";
+}
+
 std::string make_temp_dir() {
     std::error_code ec;
     const fs::path base = fs::temp_directory_path(ec);

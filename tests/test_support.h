@@ -22,11 +22,22 @@ std::string shared_dir();
 // stderr in a banner: a missing shared folder is loud, never a silent pass.
 std::string skipped_without_shared(const std::string& what);
 
+// Whether the shared folder must be there: under CI=true (docs/ci.md) a test that needs it
+// fails instead of skipping.
+bool shared_required();
+
 // At the top of a test that needs the course's files: skips it loudly (a banner on
 // stderr, "[  SKIPPED ]" and the summary line's skipped count) when shared_dir() is
-// empty. A file missing from a shared folder that is there is a failure, not a skip.
-#define SKIP_UNLESS_SHARED(what) \
-    if (shared_dir().empty()) GTEST_SKIP() << skipped_without_shared(what)
+// empty, and fails instead under CI=true. A file missing from a shared folder that is
+// there is a failure, not a skip.
+#define SKIP_UNLESS_SHARED(what)                                                                           \
+    do {                                                                                                   \
+        if (shared_dir().empty()) {                                                                        \
+            const std::string skip_message_ = skipped_without_shared(what);                                \
+            if (shared_required()) FAIL() << skip_message_ << " (CI=true: the shared folder is required)"; \
+            GTEST_SKIP() << skip_message_;                                                                 \
+        }                                                                                                  \
+    } while (false)
 
 // A fresh, empty folder in the system's temporary folder (std::filesystem::temp_directory_path,
 // $TMPDIR when set; mkdtemp). Throws std::runtime_error on failure.

@@ -57,11 +57,6 @@ std::vector<std::string> official_scenes() {
     return out;
 }
 
-#define SKIP_WITHOUT_SHARED(scenes)                                                                     \
-    if ((scenes).empty())                                                                               \
-    GTEST_SKIP() << "*** SKIPPED: the course's shared folder (or its MANIFEST.tsv) was not found; set " \
-                    "RT_SHARED_DIR ***"
-
 std::vector<uint8_t> pixel_of(const rt::Image& img, int x, int y) {
     const size_t at = (size_t(y) * size_t(img.width) + size_t(x)) * 3;
     return {img.rgb[at], img.rgb[at + 1], img.rgb[at + 2]};
@@ -111,8 +106,9 @@ const char* const kPrismScene = R"({"Scene": {
 // ---- The traced pixel is the rendered pixel -------------------------------------------
 
 TEST(Trace, TracedPixelsEqualTheRenderInEveryOfficialScene) {
+    SKIP_UNLESS_SHARED("the official scenes' traces");
     const std::vector<std::string> scenes = official_scenes();
-    SKIP_WITHOUT_SHARED(scenes);
+    ASSERT_FALSE(scenes.empty()) << shared_dir() << "/scenes/hw1/MANIFEST.tsv lists no complete scene";
     std::mt19937 rng(15);
     size_t traced = 0;
     for (const std::string& path : scenes) {
@@ -139,8 +135,9 @@ TEST(Trace, TracedPixelsEqualTheRenderInEveryOfficialScene) {
 }
 
 TEST(Trace, CommandLineTracePixelEqualsTheWrittenImageInEveryOfficialScene) {
+    SKIP_UNLESS_SHARED("the official scenes' traces");
     const std::vector<std::string> scenes = official_scenes();
-    SKIP_WITHOUT_SHARED(scenes);
+    ASSERT_FALSE(scenes.empty()) << shared_dir() << "/scenes/hw1/MANIFEST.tsv lists no complete scene";
     std::mt19937 rng(1507);
     TempDir tmp;
     for (const std::string& path : scenes) {
@@ -465,12 +462,20 @@ TEST(Trace, MinWeightDecidesWhichRaysAreTraced) {
     const auto [few, f_doc] = trace_run(tmp / "m.json", "0,0", tmp / "f.json", {"--min-weight=0.3"});
     ASSERT_EQ(few.exit_code, 0) << dump(few);
     EXPECT_EQ(deepest(f_doc), std::make_pair(1, true));
-    // The render takes the option too: 10 + 5 + 2.5 + ... over 21 terms against 14.
-    const RunResult r0 = run_raytracer({"-q", "--min-weight", "0", "m.json"}, tmp.path());
-    ASSERT_EQ(r0.exit_code, 0) << dump(r0);
-    rt::Image img;
-    ASSERT_TRUE(load_png(tmp / "m.png", img));
-    EXPECT_EQ(int(img.rgb[0]), 19);  // 20 (1 - 0.5^21) = 19.99999, truncated
+    // The render takes the option too, and --stats records it: 10 + 5 + 2.5 + ... over 21
+    // terms with 0 (and over 14 at the default, also 19 once truncated); 0.3 stops after
+    // the first reflection, 10 + 5.
+    const auto render_with = [&](const std::string& weight) {
+        const RunResult r = run_raytracer({"-q", "--min-weight", weight, "--stats", "s.json", "m.json"}, tmp.path());
+        EXPECT_EQ(r.exit_code, 0) << dump(r);
+        rt::Image img;
+        EXPECT_TRUE(load_png(tmp / "m.png", img));
+        const json stats = json::parse(read_text(tmp / "s.json"));
+        EXPECT_EQ(stats["images"][0]["min_weight"], std::stod(weight));
+        return img.rgb.empty() ? -1 : int(img.rgb[0]);
+    };
+    EXPECT_EQ(render_with("0"), 19);  // 20 (1 - 0.5^21) = 19.99999, truncated
+    EXPECT_EQ(render_with("0.3"), 15);
     const RunResult bad = run_raytracer({"--min-weight", "2", "m.json"}, tmp.path());
     EXPECT_EQ(bad.exit_code, 2) << dump(bad);
     EXPECT_TRUE(contains(bad.err, "error: --min-weight needs a number from 0 to 1, got '2'")) << dump(bad);

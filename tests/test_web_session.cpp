@@ -107,4 +107,16 @@ TEST(WebSession, ErrorsAreTheCommandLinesLines) {
               "options: colour: unknown option or bad value true");
     EXPECT_EQ(rt::web::load(tmp / "s.json", R"({"rounding": "nearest", "min_weight": 0})"), "");
     EXPECT_EQ(rt::web::render_part(0, 3, 3, px.data()), "render: part outside 0..parts-1");
+    // A syntax error too is the line without its "error: ", which raytracer.js adds once.
+    write_text(tmp / "broken.json", "{\"Scene\": {\n  \"A\": \"1\"\n  \"B\": \"2\"}}");
+    EXPECT_EQ(rt::web::load(tmp / "broken.json", "").rfind(tmp / "broken.json" + ": parse error at line 3", 0), 0u);
+}
+
+// raytracer.js rejects with the command line's line, "error: " once, whether the module's
+// message has it or not (tests/web/node_api.js, under Node with stand-in workers).
+TEST(WebSession, ApiErrorsHaveOnePrefix) {
+    if (run_program("/bin/sh", {"-c", "command -v node"}).exit_code != 0)
+        GTEST_SKIP() << "node not found (apt-get install nodejs): tests/web/node_api.js not run";
+    const RunResult r = run_program("/usr/bin/env", {"node", "tests/web/node_api.js"});
+    EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
 }

@@ -356,8 +356,8 @@ TEST(ImageOutput, FormatByExtension) {
 // ---- The 13 official XML scenes ------------------------------------------------------
 
 TEST(XmlOfficial, AllThirteenLoadAndRender) {
+    SKIP_UNLESS_SHARED("the official XML scenes");
     const std::vector<std::string> scenes = official_xml_scenes();
-    if (scenes.empty()) GTEST_SKIP() << "../shared/scenes/xml2021 not found (set RT_SHARED_DIR)";
     EXPECT_EQ(scenes.size(), 13u);
     for (const std::string& path : scenes) {
         SCOPED_TRACE(path);
@@ -386,8 +386,8 @@ TEST(XmlOfficial, AllThirteenLoadAndRender) {
 }
 
 TEST(XmlOfficial, BunnyAndTwoSpheresMatchTheReferences) {
+    SKIP_UNLESS_SHARED("the official XML scenes");
     const std::string dir = xml_dir();
-    if (dir.empty()) GTEST_SKIP() << "../shared/scenes/xml2021 not found (set RT_SHARED_DIR)";
     for (const char* name : {"bunny", "two_spheres"}) {
         SCOPED_TRACE(name);
         const rt::Scene s = rt::build_scene(rt::load_scene(dir + "/" + name + ".xml"));
@@ -406,8 +406,8 @@ TEST(XmlOfficial, BunnyAndTwoSpheresMatchTheReferences) {
 TEST(XmlOfficial, ConvertsToTheCoursesJson) {
     // The 2021 XML files have no type="xyz" / type="triangle" attributes, which the 2025
     // JSON files carry ({"_data": ..., "_type": "xyz"}); everything else must be equal.
+    SKIP_UNLESS_SHARED("the official XML scenes");
     const std::string dir = xml_dir();
-    if (dir.empty()) GTEST_SKIP() << "../shared/scenes/xml2021 not found (set RT_SHARED_DIR)";
     std::function<json(const json&)> unwrap = [&](const json& v) -> json {
         if (v.is_object() && v.size() == 2 && v.contains("_data") && v.contains("_type") &&
             (v["_type"] == "xyz" || v["_type"] == "triangle"))

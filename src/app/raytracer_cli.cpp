@@ -1,8 +1,12 @@
 // The raytracer program in this copy's precision (rt/app/program.h): reads the command
 // line, renders every camera of each scene file (run_scenes) and writes --stats; or
 // traces one pixel (--trace, run_trace).
+#include <unistd.h>
 #include <cctype>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <string>
 #include <type_traits>
@@ -11,6 +15,7 @@
 #include "rt/app/program.h"
 #include "rt/app/run.h"
 #include "rt/cli/parser.h"
+#include "rt/core/count_text.h"
 #include "rt/core/error.h"
 #include "rt/image/image.h"
 #include "rt/io/atomic_file.h"
@@ -57,6 +62,25 @@ bool is_scene_file(const std::string& path) {
     if (i >= head.size() || head[i++] != '{') return false;
     skip_space();
     return head.compare(i, 7, "\"Scene\"") == 0;
+}
+
+// Why the scene file `path` cannot be read, or "" when it can: not opened, not parsed. A name
+// with a wildcard that names no file is a pattern the shell matched to nothing and passed
+// on as written (quoted for GNU parallel or not, the shell that runs the command expands
+// it): the message says so, and where relative paths start from.
+std::string unreadable_scene(const std::string& path) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(path, ec)) return "cannot open: " + std::string(std::strerror(EISDIR));
+    // access(), not open(): opening a FIFO (a <(...) of the shell) would wait for its writer.
+    if (::access(path.c_str(), R_OK) == 0) return "";
+    const int e = errno;
+    std::string why = "cannot open: " + std::string(std::strerror(e));
+    if (e == ENOENT && path.find_first_of("*?[") != std::string::npos) {
+        const std::filesystem::path here = std::filesystem::current_path(ec);
+        why += " (no file matches this pattern, so the shell passed it on unexpanded; relative paths start from " +
+               (ec ? std::string("the current folder") : here.string()) + ")";
+    }
+    return why;
 }
 
 }  // namespace
@@ -187,12 +211,29 @@ int raytracer_cli(int argc, char** argv) {
     }
 
     if (o.frames) {
+        // Every shard checks every file given, not only its own frames, before rendering
+        // anything: a wrong path fails all shards alike (each job of a Slurm array reports it).
+        bool all_readable = true;
+        for (const std::string& s : scenes)
+            if (const std::string why = unreadable_scene(s); !why.empty()) {
+                cli::print_error(s + ": " + why);
+                all_readable = false;
+            }
+        if (!all_readable) return 1;
         const size_t given = scenes.size();
         scenes = select_frames(scenes, frames);
         if (scenes.empty()) {
-            if (!o.quiet)
-                std::fprintf(stderr, "no frame to render: %zu scene file%s given, none in this selection\n", given,
-                             given == 1 ? "" : "s");
+            // More shards than frames leaves some shards idle: a warning (an error under --strict).
+            const std::string what = "no frame to render: " + count_of(given, "scene file") +
+                                     " given, none in this selection (frames " + std::to_string(frames.first) + ":" +
+                                     (frames.last == SIZE_MAX ? std::string() : std::to_string(frames.last)) +
+                                     ", shard " + std::to_string(frames.shard) + "/" + std::to_string(frames.shards) +
+                                     ")";
+            if (o.strict) {
+                cli::print_error(what + "; --strict makes it an error");
+                return 1;
+            }
+            if (!o.quiet) std::fprintf(stderr, "warning: %s\n", what.c_str());
             return 0;
         }
     }

@@ -14,6 +14,7 @@
 
 #include "progress.h"
 #include "rt/cli/parser.h"
+#include "rt/core/count_text.h"
 #include "rt/core/error.h"
 #include "rt/geometry/scene.h"
 #include "rt/image/image.h"
@@ -26,15 +27,12 @@ namespace rt {
 
 namespace {
 
-// "1 sphere", "3 spheres".
-std::string count_of(size_t n, const char* noun) { return std::to_string(n) + " " + noun + (n == 1 ? "" : "s"); }
-
 // The summary line's counts: what the BVH holds, every bounded kind ("5 triangles, 3 spheres").
 std::string bvh_counts(const SceneFigures& f) {
     std::string s = count_of(f.shapes[size_t(ShapeKind::Triangle)], "triangle");
     for_each_shape([&](auto k) {
         using S = decltype(k);
-        if constexpr (S::kBounded) s += ", " + count_of(f.shapes[size_t(kind_of<S>)], S::kNoun);
+        if constexpr (S::kBounded) s += ", " + count_of(f.shapes[size_t(kind_of<S>)], S::kNoun, S::kNouns);
     });
     return s;
 }
@@ -57,12 +55,28 @@ struct LoadedScene {
     size_t warnings = 0;  // warnings its loading raised (the summary line counts them)
 };
 
+// A warning as the error --strict makes of it: what is wrong, without what the renderer
+// would have done instead (the loader's and load_once's wordings), and why it is an error.
+std::string strict_error(std::string w) {
+    static const std::pair<const char*, const char*> kInstead[] = {
+        {": unknown key ignored", ": unknown key"},
+        {", the first 4 used (left right bottom top)", " (expected 4: left right bottom top)"},
+        {": skipped ", ": "},  // "skipped 2 degenerate triangles"
+    };
+    for (const auto& [instead, fact] : kInstead)
+        if (const size_t at = w.find(instead); at != std::string::npos) {
+            w.replace(at, std::char_traits<char>::length(instead), fact);
+            break;
+        }
+    return w + "; --strict makes it an error";
+}
+
 // Reports the warnings of a scene: on stderr as "warning: ..." unless quiet; under
 // --strict as "error: ..." lines, and then the scene is bad input (returns false).
 bool report_warnings(const std::vector<std::string>& warnings, const RunOptions& o) {
     for (const std::string& w : warnings) {
         if (o.strict)
-            cli::print_error(w + " (--strict)");
+            cli::print_error(strict_error(w));
         else if (!o.quiet)
             std::fprintf(stderr, "warning: %s\n", w.c_str());
     }
@@ -165,8 +179,8 @@ ImageRecord render_camera(const std::string& scene_path, const LoadedScene& s, s
     RenderOptions ropt = o.render;
     app::ProgressLine progress(o.progress && !o.quiet && app::stderr_is_terminal());
     if (progress.enabled()) ropt.progress = [&progress](int done, int total) { progress.update(done, total); };
-    ImageRecord r{scene_path, out, c + 1, cam.width,     cam.height, s.figures, o.repeat,
-                  {},         {},  {},    o.render.cull, o.bvh,      0};
+    ImageRecord r{scene_path, out, c + 1, cam.width,     cam.height,          s.figures, o.repeat,
+                  {},         {},  {},    o.render.cull, o.render.min_weight, o.bvh,     0};
     std::vector<double> renders;
     Image img;
     for (int run = 0; run < o.repeat; ++run) {
@@ -278,7 +292,7 @@ int run_trace(const std::string& scene_path, const RunOptions& o, const PixelTra
     const std::vector<Camera>& cameras = s->scene.setup.cameras;
     if (req.camera < 1 || req.camera > cameras.size())
         throw UsageError("--camera " + std::to_string(req.camera) + ": " + scene_path + " has " +
-                         std::to_string(cameras.size()) + " camera" + (cameras.size() == 1 ? "" : "s"));
+                         count_of(cameras.size(), "camera"));
     const Camera& cam = cameras[req.camera - 1];
     if (req.x < 0 || req.y < 0 || req.x >= cam.width || req.y >= cam.height)
         throw UsageError("--trace " + std::to_string(req.x) + "," + std::to_string(req.y) + ": outside the " +

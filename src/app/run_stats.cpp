@@ -102,6 +102,7 @@ std::string stats_json(const std::vector<ImageRecord>& images, const std::string
         j["primitives"] = prims;
         j["threads"] = r.render_stats.threads;
         j["cull"] = r.cull;
+        j["min_weight"] = r.min_weight;
         j["max_recursion_depth"] = f.max_recursion_depth;
         j["shadow_ray_epsilon"] = f.shadow_ray_epsilon;
         // The medians over the --repeat runs, then the fastest and the slowest run.

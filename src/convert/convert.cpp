@@ -7,6 +7,7 @@
 
 #include "gltf_io.h"
 #include "rt/convert/convert.h"
+#include "rt/core/count_text.h"
 #include "rt/core/error.h"
 #include "rt/io/atomic_file.h"
 #include "rt/io/files.h"
@@ -20,12 +21,12 @@ namespace fs = std::filesystem;
 namespace rt {
 namespace {
 
-// "3 spheres, 1 planes, ": each kind but triangles, as rtconvert's note counts them.
+// "3 spheres, 1 plane, ": each kind but triangles, as rtconvert's note counts them.
 std::string shape_counts(const SceneDesc& scene) {
     std::string s;
     for_each_shape([&](auto k) {
         using S = decltype(k);
-        s += std::to_string(scene.all<S>().size()) + " " + S::kNouns + ", ";
+        s += count_of(scene.all<S>().size(), S::kNoun, S::kNouns) + ", ";
     });
     return s;
 }
@@ -100,6 +101,9 @@ ConvertResult convert_file(const std::string& input, const std::string& output, 
     check_distinct(input, output);
     ConvertResult result;
     const fs::path out_dir = folder_of(output);
+    // Files written beside the output are named as the user named the output (relative
+    // when it was), so that the list of written files reads alike.
+    const fs::path out_folder = fs::path(output).parent_path();
     const std::string out_stem = fs::path(output).stem().string();
 
     if (to == SceneFormat::Gltf) {
@@ -114,15 +118,15 @@ ConvertResult convert_file(const std::string& input, const std::string& output, 
         result.warnings = scene.warnings;
         const std::string mtl_name = out_stem + ".mtl";
         const ObjText text = scene_to_obj(scene, mtl_name, options.sphere_segments);
-        const std::string mtl_path = (out_dir / mtl_name).string();
+        const std::string mtl_path = (out_folder / mtl_name).string();
         write_file_atomic(output, text.obj);
         write_file_atomic(mtl_path, text.mtl);
         result.written = {output, mtl_path};
         size_t triangles = 0;
         for (const MeshDesc& m : scene.meshes) triangles += m.indices.size() / 3;
-        result.notes.push_back(std::to_string(scene.meshes.size()) + " meshes (" + std::to_string(triangles) +
-                               " triangles), " + shape_counts(scene) + std::to_string(scene.materials.size()) +
-                               " materials");
+        result.notes.push_back(count_of(scene.meshes.size(), "mesh", "meshes") + " (" +
+                               count_of(triangles, "triangle") + "), " + shape_counts(scene) +
+                               count_of(scene.materials.size(), "material"));
         return result;
     }
 
@@ -143,7 +147,7 @@ ConvertResult convert_file(const std::string& input, const std::string& output, 
         const std::string text = tree_text(imp.scene, to, output);
         result.written.push_back(output);
         for (const ImportedMesh& m : imp.meshes) {
-            const std::string ply_path = (out_dir / m.ply_name).string();
+            const std::string ply_path = (out_folder / m.ply_name).string();
             write_ply(ply_path, m.positions, m.indices);
             result.written.push_back(ply_path);
         }

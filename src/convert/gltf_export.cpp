@@ -14,6 +14,7 @@
 #include "gltf_io.h"
 #include "rt/convert/convert.h"
 #include "rt/convert/gltf_materials.h"
+#include "rt/core/count_text.h"
 #include "rt/core/error.h"
 #include "rt/io/atomic_file.h"
 #include "rt/io/files.h"
@@ -293,10 +294,10 @@ private:
             add_node(name, mesh_of(geometries_.size() - 1, d.material, name), Affine{});
         }
         if (!scene_.all<Sphere>().empty())
-            result_.notes.push_back(std::to_string(scene_.all<Sphere>().size()) + " spheres tessellated, " +
-                                    std::to_string(options_.sphere_segments) + " segments");
+            result_.notes.push_back(count_of(scene_.all<Sphere>().size(), "sphere") + " tessellated, " +
+                                    count_of(size_t(options_.sphere_segments), "segment"));
         if (!scene_.all<Plane>().empty())
-            result_.notes.push_back(std::to_string(scene_.all<Plane>().size()) + " planes as squares of side " +
+            result_.notes.push_back(count_of(scene_.all<Plane>().size(), "plane") + " as squares of side " +
                                     course_number(10 * double(frame.extent)));
     }
 
@@ -372,10 +373,10 @@ std::vector<std::string> write_gltf(const SceneDesc& scene, const std::string& p
                                     ConvertResult& result) {
     tinygltf::Model model;
     Exporter(scene, model, options, result).run();
-    result.notes.push_back(std::to_string(model.nodes.size()) + " nodes, " + std::to_string(model.meshes.size()) +
-                           " meshes, " + std::to_string(model.materials.size()) + " materials, " +
-                           std::to_string(model.cameras.size()) + " cameras, " + std::to_string(model.lights.size()) +
-                           " point lights");
+    result.notes.push_back(
+        count_of(model.nodes.size(), "node") + ", " + count_of(model.meshes.size(), "mesh", "meshes") + ", " +
+        count_of(model.materials.size(), "material") + ", " + count_of(model.cameras.size(), "camera") + ", " +
+        count_of(model.lights.size(), "point light"));
     namespace fs = std::filesystem;
     const bool binary = lower_extension(path) == ".glb";
     const std::string bin_name = fs::path(path).stem().string() + ".bin";

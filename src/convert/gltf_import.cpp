@@ -14,6 +14,7 @@
 #include "gltf_primitives.h"
 #include "rt/convert/gltf_materials.h"
 #include "rt/core/affine.h"
+#include "rt/core/count_text.h"
 #include "rt/core/error.h"
 #include "rt/io/files.h"
 #include "rt/loader/scene_desc.h"
@@ -107,11 +108,10 @@ public:
         if (objects.empty()) fail("", "no triangle meshes in the scene");
         scene["Objects"] = objects;
         out_.scene = {{"Scene", scene}};
-        out_.notes.push_back(std::to_string(mesh_objects_.size()) + " meshes (" + std::to_string(out_.meshes.size()) +
-                             " PLY files), " + std::to_string(instance_objects_.size()) + " instances, " +
-                             std::to_string(sphere_objects_.size()) + " spheres, " +
-                             std::to_string(plane_objects_.size()) + " planes, " + std::to_string(transforms_.size()) +
-                             " transformations");
+        out_.notes.push_back(
+            count_of(mesh_objects_.size(), "mesh", "meshes") + " (" + count_of(out_.meshes.size(), "PLY file") + "), " +
+            count_of(instance_objects_.size(), "instance") + ", " + count_of(sphere_objects_.size(), "sphere") + ", " +
+            count_of(plane_objects_.size(), "plane") + ", " + count_of(transforms_.size(), "transformation"));
     }
 
 private:
@@ -439,8 +439,7 @@ private:
             const int c = options_.camera - 1;
             if (size_t(c) >= model_.cameras.size())
                 fail("/cameras", "--camera " + std::to_string(options_.camera) + ": the file has " +
-                                     std::to_string(model_.cameras.size()) + " camera" +
-                                     (model_.cameras.size() == 1 ? "" : "s"));
+                                     count_of(model_.cameras.size(), "camera"));
             if (!first.count(c)) fail("/cameras/" + std::to_string(c), "no node places this camera");
             chosen.push_back(first[c]);
         }

@@ -19,6 +19,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "rt/core/count_text.h"
 #include "rt/core/error.h"
 #include "rt/io/files.h"
 #include "scene_import.h"
@@ -226,8 +227,7 @@ SceneImport import_obj(const std::string& obj_path, const ConvertOptions& option
         }
     }
     if (degenerate)
-        out.warnings.push_back(obj_path + ": skipped " + std::to_string(degenerate) + " face" +
-                               (degenerate > 1 ? "s" : "") + " with fewer than 3 vertices");
+        out.warnings.push_back(obj_path + ": skipped " + count_of(degenerate, "face") + " with fewer than 3 vertices");
 
     const size_t nv = attrib.vertices.size() / 3, nn = attrib.normals.size() / 3;
     for (size_t i = 0; i < attrib.vertices.size(); ++i)
@@ -348,15 +348,15 @@ SceneImport import_obj(const std::string& obj_path, const ConvertOptions& option
         mesh["Faces"] = {{"_plyFile", out.meshes[i].ply_name}};
         meshes.push_back(mesh);
         triangles += out.meshes[i].indices.size() / 3;
-        out.notes.push_back("mesh " + std::to_string(i + 1) + ": " + std::to_string(out.meshes[i].indices.size() / 3) +
-                            " triangles, " + (mesh_info[i].second ? "smooth" : "flat") + ", material " +
+        out.notes.push_back("mesh " + std::to_string(i + 1) + ": " +
+                            count_of(out.meshes[i].indices.size() / 3, "triangle") + ", " +
+                            (mesh_info[i].second ? "smooth" : "flat") + ", material " +
                             std::to_string(material_slot[mesh_info[i].first]) + " -> " + out.meshes[i].ply_name);
     }
     scene["Objects"] = {{"Mesh", meshes}};
     out.scene = {{"Scene", scene}};
-    out.notes.push_back(std::to_string(face_no) + " faces (" + std::to_string(polygons) + " polygons fan-split) -> " +
-                        std::to_string(triangles) + " triangles in " + std::to_string(out.meshes.size()) + " mesh" +
-                        (out.meshes.size() > 1 ? "es" : ""));
+    out.notes.push_back(count_of(face_no, "face") + " (" + count_of(polygons, "polygon") + " fan-split) -> " +
+                        count_of(triangles, "triangle") + " in " + count_of(out.meshes.size(), "mesh", "meshes"));
     return out;
 }
 #else

@@ -21,12 +21,16 @@ void JsonFields::fail(const std::string& where, const std::string& what) const {
 const JsonFields::json& JsonFields::require(const json& obj, const std::string& path, const char* key) const {
     const json* v = find(obj, key);
     if (!v) {
-        std::string found;
-        for (auto it = obj.begin(); it != obj.end() && found.empty(); ++it)
-            if (!near_miss(it.key(), {key}).empty()) found = it.key();
+        const auto [found, meant] = near_key(obj, {key});
         fail(path + "/" + key, "required key is missing" + (found.empty() ? "" : " (found '" + found + "' instead)"));
     }
     return *v;
+}
+
+std::pair<std::string, std::string> JsonFields::near_key(const json& obj, const std::vector<std::string>& keys) {
+    for (auto it = obj.begin(); it != obj.end(); ++it)
+        if (const std::string meant = near_miss(it.key(), keys); !meant.empty()) return {it.key(), meant};
+    return {};
 }
 
 void JsonFields::expect_object(const json& v, const std::string& path) const {

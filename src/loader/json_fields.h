@@ -8,6 +8,7 @@
 
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rt/core/math.h"
@@ -34,6 +35,9 @@ public:
     // A required key; when it is missing, the error names a near miss of it that the
     // object has instead ("found 'Raduis' instead").
     const json& require(const json& obj, const std::string& path, const char* key) const;
+    // The first key of `obj` that is a near miss of one of `keys`, and the key it is a near
+    // miss of: {"_plyfile", "_plyFile"}; {"", ""} when none is.
+    static std::pair<std::string, std::string> near_key(const json& obj, const std::vector<std::string>& keys);
     void expect_object(const json& v, const std::string& path) const;
 
     // Records keys the renderer does not use; `generic` is the path without array indices.

@@ -426,7 +426,9 @@ private:
                 add_inline_faces(mesh, numbers(*data, fp + "/_data"), fp + "/_data");
                 mesh.source = fp;
             } else {
-                fail(fp, "needs _data or _plyFile");
+                const auto [found, meant] = near_key(faces, {"_data", "_plyFile"});
+                fail(fp, "needs _data or _plyFile" +
+                             (found.empty() ? "" : " (did you mean " + meant + "? found " + found + ")"));
             }
             out_.meshes.push_back(std::move(mesh));
         });

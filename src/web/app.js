@@ -191,7 +191,8 @@ async function compareWith(file, img, stack, figures, toggle, check, camera) {
     toggle.hidden = false;
     check.onchange = () => { h.hidden = !check.checked; };
   } catch (e) {
-    figures.textContent = "error: " + file.name + ": " + e.message;
+    // raytracer.js's errors are whole lines already; the PNG decoder's name nothing.
+    figures.textContent = /^error: /.test(e.message) ? e.message : "error: " + file.name + ": " + e.message;
   }
 }
 

@@ -48,6 +48,10 @@
     }
   }
 
+  // What a request rejects with: the command line's one line, with one "error: " prefix
+  // whether or not the message had it already.
+  const failure = (message) => new Error(/^error: /.test(message) ? message : "error: " + message);
+
   const kRenderKeys = ["cull", "max_depth", "epsilon_scale", "min_weight", "rounding"];
 
   class Raytracer {
@@ -87,11 +91,11 @@
       if (this.loaded && this.loaded.files === req.files && this.loaded.key === key) return this.loaded.info;
       this.loaded = null;
       if (!req.files || !req.scene || !(req.scene in req.files))
-        throw new Error("error: " + (req.scene || "no scene") + ": not among the files given");
+        throw failure((req.scene || "no scene") + ": not among the files given");
       const replies = await Promise.all(
         workers.map((w) => w.ask({ type: "load", files: req.files, scene: req.scene, options: renderOptions, precision })));
       const bad = replies.find((r) => r.error);
-      if (bad) throw new Error("error: " + bad.error);
+      if (bad) throw failure(bad.error);
       this.loaded = { files: req.files, key, info: replies[0].info };
       return replies[0].info;
     }
@@ -119,7 +123,7 @@
             });
           }));
           const bad = replies.find((r) => r.error);
-          if (bad) throw new Error("error: " + bad.error);
+          if (bad) throw failure(bad.error);
           const rgba = replies[0].rgba;
           for (const r of replies.slice(1))
             for (let i = 3; i < rgba.length; i += 4)
@@ -142,8 +146,8 @@
         const n = this.loaded ? this.workers.length : 1;
         await this.load(req, Math.max(1, n));
         const r = await this.workers[0].ask({ type: "trace", camera: req.camera || 0, x: req.x, y: req.y });
-        if (r.error) throw new Error("error: " + r.error);
-        if (r.trace.error) throw new Error("error: " + r.trace.error);
+        if (r.error) throw failure(r.error);
+        if (r.trace.error) throw failure(r.trace.error);
         return r.trace;
       });
     }
@@ -152,7 +156,7 @@
       return this.serial(async () => {
         const workers = this.workers.length ? this.workers : this.pool(1);
         const r = await workers[0].ask({ type: "compare", a, b, width, height, tolerance });
-        if (r.error) throw new Error("error: " + r.error);
+        if (r.error) throw failure(r.error);
         return { figures: r.figures, heat: r.heat };
       });
     }

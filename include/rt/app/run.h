@@ -78,6 +78,7 @@ struct ImageRecord {
     Timing render, write;      // seconds; written once, so write is one sample
     RenderStats render_stats;  // of the last run (every run traces the same rays)
     bool cull = true;
+    double min_weight = 0;  // --min-weight
     BvhBuildOptions bvh;
     uint64_t peak_rss = 0;    // bytes, of the whole process so far
     uint64_t render_rss = 0;  // bytes resident when the render ended: the scene's render data
