@@ -1,6 +1,6 @@
 #!/bin/bash
 # make check-doc-commands: the animation commands of docs/animations.md and of the README's
-# Animations section, run as written from the repository's folder over their first 8 frames:
+# workflow step 4 (Animate), run as written from the repository's folder over their first 8 frames:
 # the GNU parallel lines (not the --sshlogin ones, which need other hosts) and the
 # ./raytracer lines given scene files. Each runs with `-o frames` pointed at a temporary
 # folder and `--frames 0:7` added; it must exit 0 and write 8 frames. Exit status 0 when
@@ -25,7 +25,7 @@ fi
 commands() {
     grep -E '^    (parallel |\./raytracer )' | grep -v -e '--sshlogin' | grep -F '.json' | sed 's/^    //'
 }
-readme_animations() { awk '/^## /{on = ($0 == "## Animations")} on' README.md; }
+readme_animations() { awk '/^\*\*[0-9]+\. /{on = ($0 ~ /^\*\*4\. Animate/)} /^## /{on = 0} on' README.md; }
 
 failed=0
 n=0
@@ -60,7 +60,7 @@ while IFS= read -r cmd; do
     run docs/animations.md "$cmd"
 done < <(commands < docs/animations.md)
 while IFS= read -r cmd; do
-    run "README.md, Animations" "$cmd"
+    run "README.md, step 4" "$cmd"
 done < <(readme_animations | commands)
 
 if [ "$parallel_lines" -eq 0 ]; then
