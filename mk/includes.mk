@@ -4,3 +4,5 @@
 .PHONY: check-includes
 check-includes:
 	python3 tests/tools/include_graph.py
+
+test: check-includes

@@ -23,9 +23,9 @@
 #include "rt/app/run.h"
 #include "rt/bvh/bvh.h"
 #include "rt/core/error.h"
-#include "rt/geometry/scene.h"
 #include "rt/loader/load_scene.h"
 #include "rt/render/render.h"
+#include "rt/scene_build/build_scene.h"
 #include "test_support.h"
 
 namespace {

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "rt/geometry/scene.h"
 #include "rt/loader/load_scene.h"
 #include "rt/render/render.h"
+#include "rt/scene_build/build_scene.h"
 #include "rt/shading/trace.h"
 #include "rt/web/session.h"
 #include "test_support.h"

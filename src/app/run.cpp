@@ -15,11 +15,11 @@
 #include "progress.h"
 #include "rt/cli/options.h"
 #include "rt/core/error.h"
-#include "rt/geometry/scene.h"
 #include "rt/image/image.h"
 #include "rt/io/atomic_file.h"
 #include "rt/io/memory.h"
 #include "rt/loader/load_scene.h"
+#include "rt/scene_build/build_scene.h"
 #include "rt/shading/trace.h"
 
 namespace rt {
@@ -34,7 +34,7 @@ std::string bvh_counts(const SceneFigures& f) {
     std::string s = count_of(f.shapes[size_t(ShapeKind::Triangle)], "triangle");
     for_each_shape([&](auto k) {
         using S = decltype(k);
-        if constexpr (S::kBounded) s += ", " + count_of(f.shapes[size_t(kind_of<S>)], S::kNoun);
+        if constexpr (S::kBounded) s += ", " + count_of(f.shapes[size_t(kind_of<S>)], S::Desc::kNoun);
     });
     return s;
 }

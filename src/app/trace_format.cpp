@@ -5,6 +5,7 @@
 #include <limits>
 #include <string>
 
+#include "rt/materials/materials.h"
 #include "rt/shading/trace.h"
 
 namespace rt {

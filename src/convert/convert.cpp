@@ -23,9 +23,9 @@ namespace {
 // "3 spheres, 1 planes, ": each kind but triangles, as rtconvert's note counts them.
 std::string shape_counts(const SceneDesc& scene) {
     std::string s;
-    for_each_shape([&](auto k) {
-        using S = decltype(k);
-        s += std::to_string(scene.all<S>().size()) + " " + S::kNouns + ", ";
+    for_each_shape_desc([&](auto k) {
+        using D = decltype(k);
+        s += std::to_string(scene.all<D>().size()) + " " + D::kNouns + ", ";
     });
     return s;
 }

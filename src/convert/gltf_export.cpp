@@ -18,6 +18,7 @@
 #include "rt/io/atomic_file.h"
 #include "rt/io/files.h"
 #include "rt/loader/scene_desc.h"
+#include "rt/shapes/shapes.h"
 #include "scene_import.h"
 
 namespace rt {
@@ -270,13 +271,13 @@ private:
     void add_shapes() {
         const ExportFrame frame = export_frame(scene_, options_.sphere_segments);
         // Instances, the meshes drawn as themselves first (the loader's order).
-        for (const InstanceDesc& d : scene_.all<Instance>()) {
+        for (const InstanceDesc& d : scene_.all<InstanceDesc>()) {
             const MeshDesc& m = scene_.meshes.at(d.mesh);
-            const std::string name = std::string(d.key ? d.key : Instance::kKey) + " " + d.id;
+            const std::string name = std::string(d.key ? d.key : InstanceDesc::kKey) + " " + d.id;
             add_node(name, mesh_of(d.mesh, d.material, std::string(m.triangle_object ? "Triangle " : "Mesh ") + m.id),
                      d.transform);
         }
-        for (const SphereDesc& d : scene_.all<Sphere>()) {
+        for (const SphereDesc& d : scene_.all<SphereDesc>()) {
             SphereDesc local = d;
             local.transform = Affine{};
             const Polygons poly = Sphere::polygons(local, frame);
@@ -285,18 +286,18 @@ private:
             const std::string name = "Sphere " + d.id;
             add_node(name, mesh_of(geometries_.size() - 1, d.material, name), d.transform);
         }
-        for (const PlaneDesc& d : scene_.all<Plane>()) {
+        for (const PlaneDesc& d : scene_.all<PlaneDesc>()) {
             const Polygons poly = Plane::polygons(d, frame);
             geometries_.push_back(add_geometry(buffers_, poly.vertices, triangles_of(poly), false, false));
             geometries_.back().extras["plane"] = {{"point", arr(d.point)}, {"normal", arr(d.normal)}};
             const std::string name = "Plane " + d.id;
             add_node(name, mesh_of(geometries_.size() - 1, d.material, name), Affine{});
         }
-        if (!scene_.all<Sphere>().empty())
-            result_.notes.push_back(std::to_string(scene_.all<Sphere>().size()) + " spheres tessellated, " +
+        if (!scene_.all<SphereDesc>().empty())
+            result_.notes.push_back(std::to_string(scene_.all<SphereDesc>().size()) + " spheres tessellated, " +
                                     std::to_string(options_.sphere_segments) + " segments");
-        if (!scene_.all<Plane>().empty())
-            result_.notes.push_back(std::to_string(scene_.all<Plane>().size()) + " planes as squares of side " +
+        if (!scene_.all<PlaneDesc>().empty())
+            result_.notes.push_back(std::to_string(scene_.all<PlaneDesc>().size()) + " planes as squares of side " +
                                     course_number(10 * double(frame.extent)));
     }
 

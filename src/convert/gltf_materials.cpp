@@ -111,7 +111,7 @@ bool same_pbr(const PbrMaterial& a, const PbrMaterial& b) {
 nlohmann::ordered_json material_entry(const MaterialDesc& m, size_t id) {
     nlohmann::ordered_json j = nlohmann::ordered_json::object();
     j["_id"] = std::to_string(id);
-    visit_material<void>(m.type, [&](auto k) {
+    visit_material_format<void>(m.type, [&](auto k) {
         using M = decltype(k);
         if (M::kTypeWord) j["_type"] = M::kTypeWord;
     });
@@ -120,7 +120,7 @@ nlohmann::ordered_json material_entry(const MaterialDesc& m, size_t id) {
     j["SpecularReflectance"] = course_vec(arr(m.specular));
     j["PhongExponent"] = course_number(double(m.phong_exponent));
     // The kind's own keys (rt/materials/), each a field of MaterialDesc.
-    visit_material<void>(m.type, [&](auto k) {
+    visit_material_format<void>(m.type, [&](auto k) {
         for (const char* key : decltype(k)::kKeys) {
             if (!std::strcmp(key, "MirrorReflectance")) j[key] = course_vec(arr(m.mirror));
             if (!std::strcmp(key, "RefractionIndex")) j[key] = course_number(double(m.refraction_index));
@@ -167,10 +167,10 @@ bool material_from_extras(const nlohmann::json& j, MaterialDesc& m) {
     const auto type = j.find("type");
     if (type == j.end() || !type->is_string()) return false;
     bool known = false;
-    for_each_material([&](auto k) {
+    for_each_material_format([&](auto k) {
         using M = decltype(k);
         if (*type == M::kName) {
-            m.type = material_type_of<M>;
+            m.type = material_type_of_format<M>;
             known = true;
         }
     });

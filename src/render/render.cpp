@@ -10,8 +10,8 @@
 #include <thread>
 #include <vector>
 
-#include "rt/bvh/traverse.h"
 #include "rt/core/threads.h"
+#include "rt/geometry/traverse.h"
 #include "rt/render/render.h"
 #include "rt/shading/shading.h"
 

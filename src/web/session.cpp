@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "rt/core/error.h"
-#include "rt/geometry/scene.h"
 #include "rt/loader/load_scene.h"
 #include "rt/render/render.h"
+#include "rt/scene_build/build_scene.h"
 #include "rt/shading/trace.h"
 
 namespace rt::web {

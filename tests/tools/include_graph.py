@@ -81,10 +81,13 @@ def main():
     comps = components(arrows)
     for comp in comps:
         print("cycle among: " + " ".join(comp))
+        pairs = [f"{a} <-> {b}" for a in comp for b in sorted(arrows[a]) if a < b and a in arrows.get(b, {})]
+        if pairs:
+            print("  folders that include each other: " + ", ".join(pairs))
         for a in comp:
             for b in sorted(arrows[a]):
                 if b in comp:
-                    print(f"  {a} -> {b}: {', '.join(arrows[a][b])}")
+                    print(f"  {a} -> {b}: {', '.join(sorted(set(arrows[a][b])))}")
     if comps:
         print(f"include_graph: {len(comps)} cycle(s) of folders")
         return 1

@@ -29,7 +29,7 @@ struct RunOptions {
                                // many times, for timing; every image is written once
     bool frames = false;       // --frames or --shard picked the files: an animation's frames
     // Set by run_scenes for several files or for frames: the meshes they share, each PLY
-    // file parsed and each mesh's BVH built once (rt/loader/mesh_cache.h).
+    // file parsed and each mesh's BVH built once (rt/scene_build/mesh_cache.h).
     MeshCache* meshes = nullptr;
 };
 
