@@ -1,8 +1,8 @@
 // Mesh instances (rt/shapes/instance.h): a ray carried into the mesh's own space and
 // traced through its BVH; the surface carried back. Here, beside the traversal, since an
 // instance's ray test is a query of its mesh's scene.
-#include "rt/geometry/traverse.h"
 #include "rt/shapes/instance.h"
+#include "rt/geometry/traverse.h"
 
 namespace rt {
 
