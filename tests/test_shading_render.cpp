@@ -50,7 +50,7 @@ rt::RenderOptions nearest() {
 
 rt::RenderOptions no_cull() {
     rt::RenderOptions o;
-    o.cull = false;
+    o.trace.cull = false;
     return o;
 }
 

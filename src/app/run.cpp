@@ -43,12 +43,6 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// The measurement overrides (--max-depth, --epsilon-scale) applied to a built scene.
-void apply_overrides(Scene& scene, const RunOptions& o) {
-    if (o.max_depth >= 0) scene.setup.max_recursion_depth = o.max_depth;
-    scene.setup.shadow_ray_epsilon = static_cast<Real>(scene.setup.shadow_ray_epsilon * o.epsilon_scale);
-}
-
 // A scene ready to render, with what the summary lines and records report of it.
 struct LoadedScene {
     Scene scene;
@@ -94,7 +88,7 @@ std::optional<LoadedScene> load_once(const std::string& scene_path, const RunOpt
         const double build_s = seconds_since(b0);
         release_free_memory();  // the scene's descs, freed: back to the system
         const double total_s = seconds_since(t0);
-        apply_overrides(s.scene, o);
+        apply_overrides(s.scene, o.render);
         SceneTimes times;
         times.parse = timing_of({parse_s});
         times.ply = timing_of({ply_s});
@@ -165,8 +159,8 @@ ImageRecord render_camera(const std::string& scene_path, const LoadedScene& s, s
     RenderOptions ropt = o.render;
     app::ProgressLine progress(o.progress && !o.quiet && app::stderr_is_terminal());
     if (progress.enabled()) ropt.progress = [&progress](int done, int total) { progress.update(done, total); };
-    ImageRecord r{scene_path, out, c + 1, cam.width,     cam.height, s.figures, o.repeat,
-                  {},         {},  {},    o.render.cull, o.bvh,      0};
+    ImageRecord r{scene_path, out, c + 1, cam.width,           cam.height, s.figures, o.repeat,
+                  {},         {},  {},    o.render.trace.cull, o.bvh,      0};
     std::vector<double> renders;
     Image img;
     for (int run = 0; run < o.repeat; ++run) {
@@ -285,8 +279,7 @@ int run_trace(const std::string& scene_path, const RunOptions& o, const PixelTra
                          std::to_string(cam.width) + "x" + std::to_string(cam.height) + " image of camera " +
                          std::to_string(req.camera) + " (x 0.." + std::to_string(cam.width - 1) + ", y 0.." +
                          std::to_string(cam.height - 1) + ")");
-    PixelTrace t = trace_pixel(s->scene, req.camera - 1, req.x, req.y, TraceOptions{o.render.cull, o.render.min_weight},
-                               o.render.rounding);
+    PixelTrace t = trace_pixel(s->scene, req.camera - 1, req.x, req.y, o.render.trace, o.render.rounding);
     t.scene = scene_path;
     std::fputs(trace_text(s->scene, t).c_str(), stdout);
     if (req.json_path.empty()) return 0;

@@ -540,7 +540,7 @@ private:
             scene["IntersectionTestEpsilon"] = course_number(intersection);
         double depth = 6;
         if (e.is_object() && e.value("maxRecursionDepth", none).is_number_integer())
-            number(e["maxRecursionDepth"], depth, 0, 10000);
+            number(e["maxRecursionDepth"], depth, 0, kMaxRecursionDepth);
         scene["MaxRecursionDepth"] = std::to_string(int(depth));
     }
 

@@ -25,7 +25,6 @@ using nlohmann::json;
 
 // Largest image we agree to allocate (refused before allocating).
 constexpr long long kMaxPixels = 1LL << 28;
-constexpr int kMaxRecursionDepthLimit = 10000;
 
 class Loader : JsonFields {
 public:
@@ -49,8 +48,8 @@ public:
             out_.intersection_test_epsilon = non_negative(*v, sp + "/IntersectionTestEpsilon");
         if (const json* v = find(scene, "MaxRecursionDepth")) {
             const long long d = integer(*v, sp + "/MaxRecursionDepth");
-            if (d < 0 || d > kMaxRecursionDepthLimit)
-                fail(sp + "/MaxRecursionDepth", "must be between 0 and " + std::to_string(kMaxRecursionDepthLimit));
+            if (d < 0 || d > kMaxRecursionDepth)
+                fail(sp + "/MaxRecursionDepth", "must be between 0 and " + std::to_string(kMaxRecursionDepth));
             out_.max_recursion_depth = static_cast<int>(d);
         }
 

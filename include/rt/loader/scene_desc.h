@@ -19,6 +19,10 @@ namespace rt {
 // keeps its boxes in float (max ~3.4e38), and squared distances must stay finite.
 constexpr double kMaxMagnitude = 1e30;
 
+// MaxRecursionDepth's bound: the loader's, and that of the overrides (--max-depth, the page's
+// max_depth) and of the glTF import.
+constexpr int kMaxRecursionDepth = 10000;
+
 struct PointLightDesc {
     Vec3 position, intensity;
 };
