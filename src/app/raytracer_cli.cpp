@@ -160,7 +160,7 @@ int raytracer_cli(int argc, char** argv) {
                 cli::usage_error(std::string(flag) + " " + *out + ": that is a scene file; it is not overwritten");
     });
     if (const auto status = cli::parse(app, kProgram, argc, argv)) return *status;
-    // main() picked this copy of the program from the same arguments (precision_of).
+    // main() (src/main.cpp) picked this copy of the program from the same arguments.
     if (float_precision != std::is_same_v<Real, float>) {
         cli::print_error(std::string("internal error: --precision ") + (float_precision ? "float" : "double") +
                          " reached the " + kPrecisionName + " renderer");

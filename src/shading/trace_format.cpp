@@ -1,4 +1,5 @@
-// A pixel's ray tree as indented text and as JSON (rt/shading/trace.h; the format: docs/trace.md).
+// A pixel's ray tree as indented text and as JSON, beside the tree itself (trace.cpp,
+// rt/shading/trace.h; the format: docs/trace.md).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
