@@ -268,15 +268,28 @@ private:
         }
     }
 
+    // Every kind of shape, instances first (the meshes drawn as themselves, in the loader's
+    // order), then spheres and planes: one add_kind per kind of ShapeDescs, and a kind
+    // missing from ExportedKinds does not compile.
+    using ExportedKinds = KindList<InstanceDesc, SphereDesc, PlaneDesc>;
+    static_assert(ExportedKinds::size == ShapeDescs::size && covers(ExportedKinds{}, ShapeDescs{}),
+                  "the glTF export writes every kind of ShapeDescs");
+
     void add_shapes() {
         const ExportFrame frame = export_frame(scene_, options_.sphere_segments);
-        // Instances, the meshes drawn as themselves first (the loader's order).
+        for_each_kind(ExportedKinds{}, [&](auto k) { add_kind(k, frame); });
+    }
+
+    void add_kind(InstanceDesc, const ExportFrame&) {
         for (const InstanceDesc& d : scene_.all<InstanceDesc>()) {
             const MeshDesc& m = scene_.meshes.at(d.mesh);
             const std::string name = std::string(d.key ? d.key : InstanceDesc::kKey) + " " + d.id;
             add_node(name, mesh_of(d.mesh, d.material, std::string(m.triangle_object ? "Triangle " : "Mesh ") + m.id),
                      d.transform);
         }
+    }
+
+    void add_kind(SphereDesc, const ExportFrame& frame) {
         for (const SphereDesc& d : scene_.all<SphereDesc>()) {
             SphereDesc local = d;
             local.transform = Affine{};
@@ -286,6 +299,12 @@ private:
             const std::string name = "Sphere " + d.id;
             add_node(name, mesh_of(geometries_.size() - 1, d.material, name), d.transform);
         }
+        if (!scene_.all<SphereDesc>().empty())
+            result_.notes.push_back(std::to_string(scene_.all<SphereDesc>().size()) + " spheres tessellated, " +
+                                    std::to_string(options_.sphere_segments) + " segments");
+    }
+
+    void add_kind(PlaneDesc, const ExportFrame& frame) {
         for (const PlaneDesc& d : scene_.all<PlaneDesc>()) {
             const Polygons poly = Plane::polygons(d, frame);
             geometries_.push_back(add_geometry(buffers_, poly.vertices, triangles_of(poly), false, false));
@@ -293,9 +312,6 @@ private:
             const std::string name = "Plane " + d.id;
             add_node(name, mesh_of(geometries_.size() - 1, d.material, name), Affine{});
         }
-        if (!scene_.all<SphereDesc>().empty())
-            result_.notes.push_back(std::to_string(scene_.all<SphereDesc>().size()) + " spheres tessellated, " +
-                                    std::to_string(options_.sphere_segments) + " segments");
         if (!scene_.all<PlaneDesc>().empty())
             result_.notes.push_back(std::to_string(scene_.all<PlaneDesc>().size()) + " planes as squares of side " +
                                     course_number(10 * double(frame.extent)));

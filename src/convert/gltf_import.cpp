@@ -24,9 +24,6 @@ namespace rt {
 #ifndef RT_NO_GLTF
 namespace {
 
-using ojson = nlohmann::ordered_json;
-using json = nlohmann::json;
-using V3 = std::array<double, 3>;
 using rtgltf::to_json;
 
 // Extensions the import reads, or may leave aside without changing what a scene shows.

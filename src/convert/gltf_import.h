@@ -13,22 +13,27 @@
 
 namespace rt {
 
+// The JSON the import writes (in the course's key order) and reads, and a point in double.
+using ojson = nlohmann::ordered_json;
+using json = nlohmann::json;
+using V3 = std::array<double, 3>;
+
 // Extras are read only when they hold what the loader accepts (numbers within +-1e30,
 // colours not negative); `out` is left alone otherwise.
-inline bool number(const nlohmann::json& j, double& out, double lo = -kMaxMagnitude, double hi = kMaxMagnitude) {
+inline bool number(const json& j, double& out, double lo = -kMaxMagnitude, double hi = kMaxMagnitude) {
     if (!j.is_number() || !(j.get<double>() >= lo && j.get<double>() <= hi)) return false;
     out = j.get<double>();
     return true;
 }
-inline bool vec3(const nlohmann::json& j, std::array<double, 3>& out, double lo = -kMaxMagnitude) {
-    std::array<double, 3> v;
+inline bool vec3(const json& j, V3& out, double lo = -kMaxMagnitude) {
+    V3 v;
     if (!j.is_array() || j.size() != 3) return false;
     for (size_t i = 0; i < 3; ++i)
         if (!number(j[i], v[i], lo)) return false;
     out = v;
     return true;
 }
-inline bool colour(const nlohmann::json& j, std::array<double, 3>& out) { return vec3(j, out, 0); }
+inline bool colour(const json& j, V3& out) { return vec3(j, out, 0); }
 
 #ifndef RT_NO_GLTF
 // The course's materials of the model's materials (docs/gltf.md, rt/convert/gltf_materials.h):
@@ -36,8 +41,7 @@ inline bool colour(const nlohmann::json& j, std::array<double, 3>& out) { return
 // else by the table; then, with `with_default` (for primitives without one), a default
 // grey. Warnings of what the format lacks (textures, emission, alpha) and a note per
 // material go to `out`; `path` names the file in them.
-nlohmann::ordered_json import_materials(const tinygltf::Model& model, const std::string& path, bool with_default,
-                                        SceneImport& out);
+ojson import_materials(const tinygltf::Model& model, const std::string& path, bool with_default, SceneImport& out);
 #endif
 
 }  // namespace rt

@@ -12,10 +12,6 @@ namespace rt {
 #ifndef RT_NO_GLTF
 namespace {
 
-using ojson = nlohmann::ordered_json;
-using json = nlohmann::json;
-using V3 = std::array<double, 3>;
-using rtgltf::to_json;
 using Warn = std::function<void(const std::string&)>;
 
 // The material's PBR factors; what the format lacks is warned of, with `mp` its place.
@@ -27,7 +23,7 @@ PbrMaterial pbr(const tinygltf::Material& m, const std::string& mp, const Warn& 
     p.roughness = pbr.roughnessFactor;
     auto ext = [&](const char* name) {
         const auto it = m.extensions.find(name);
-        return it == m.extensions.end() ? json() : to_json(it->second);
+        return it == m.extensions.end() ? json() : rtgltf::to_json(it->second);
     };
     const json t = ext("KHR_materials_transmission"), i = ext("KHR_materials_ior"), v = ext("KHR_materials_volume");
     if (t.is_object()) p.transmission = t.value("transmissionFactor", 0.0);

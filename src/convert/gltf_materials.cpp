@@ -34,37 +34,45 @@ double exponent_of_roughness(double r) {
     return std::min(std::max(2 / (alpha * alpha) - 2, 1.0), 1e6);
 }
 
+namespace {
+
+// Each kind's glTF form, by the kinds of Materials: a kind without one does not compile
+// (pbr_of).
+void pbr_of_kind(PlainMaterial, const MaterialDesc& m, PbrMaterial& p) {
+    p.metallic = 0;
+    for (int i = 0; i < 3; ++i) p.base[i] = clamp01(double(m.diffuse[i]));
+}
+
+void pbr_of_kind(MirrorMaterial, const MaterialDesc& m, PbrMaterial& p) {
+    p.metallic = 1;
+    for (int i = 0; i < 3; ++i) p.base[i] = clamp01(double(m.mirror[i]));
+}
+
+// The same reflectance at normal incidence as the course's conductor.
+void pbr_of_kind(ConductorMaterial, const MaterialDesc& m, PbrMaterial& p) {
+    p.metallic = 1;
+    const double f = conductor_f0(double(m.refraction_index), double(m.absorption_index)) /
+                     conductor_f0(kMetalRefractionIndex, kMetalAbsorptionIndex);
+    for (int i = 0; i < 3; ++i) p.base[i] = clamp01(double(m.mirror[i]) * f);
+}
+
+void pbr_of_kind(DielectricMaterial, const MaterialDesc& m, PbrMaterial& p) {
+    p.metallic = 0;
+    p.transmission = 1;
+    p.ior = double(m.refraction_index);
+    // Beer's law: white light keeps exp(-c) of itself over one unit of distance.
+    if (m.absorption_coefficient[0] > 0 || m.absorption_coefficient[1] > 0 || m.absorption_coefficient[2] > 0) {
+        p.attenuation_distance = 1;
+        for (int i = 0; i < 3; ++i) p.attenuation[i] = std::exp(-double(m.absorption_coefficient[i]));
+    }
+}
+
+}  // namespace
+
 PbrMaterial pbr_of(const MaterialDesc& m) {
     PbrMaterial p;
     p.roughness = roughness_of_exponent(double(m.phong_exponent));
-    switch (m.type) {
-        case MaterialType::Plain:
-            p.metallic = 0;
-            for (int i = 0; i < 3; ++i) p.base[i] = clamp01(double(m.diffuse[i]));
-            break;
-        case MaterialType::Mirror:
-            p.metallic = 1;
-            for (int i = 0; i < 3; ++i) p.base[i] = clamp01(double(m.mirror[i]));
-            break;
-        case MaterialType::Conductor: {
-            // The same reflectance at normal incidence as the course's conductor.
-            p.metallic = 1;
-            const double f = conductor_f0(double(m.refraction_index), double(m.absorption_index)) /
-                             conductor_f0(kMetalRefractionIndex, kMetalAbsorptionIndex);
-            for (int i = 0; i < 3; ++i) p.base[i] = clamp01(double(m.mirror[i]) * f);
-            break;
-        }
-        case MaterialType::Dielectric:
-            p.metallic = 0;
-            p.transmission = 1;
-            p.ior = double(m.refraction_index);
-            // Beer's law: white light keeps exp(-c) of itself over one unit of distance.
-            if (m.absorption_coefficient[0] > 0 || m.absorption_coefficient[1] > 0 || m.absorption_coefficient[2] > 0) {
-                p.attenuation_distance = 1;
-                for (int i = 0; i < 3; ++i) p.attenuation[i] = std::exp(-double(m.absorption_coefficient[i]));
-            }
-            break;
-    }
+    visit_material<void>(m.type, [&](auto k) { pbr_of_kind(k, m, p); });
     return p;
 }
 

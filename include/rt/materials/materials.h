@@ -27,15 +27,9 @@ template <class M>
 inline constexpr MaterialType material_type_of = MaterialType(IndexIn<M, Materials>::value);
 
 // Materials and MaterialFormats list the same kinds in the same order.
-template <class... M, class... F>
-constexpr bool same_material_kinds(KindList<M...>, KindList<F...>) {
-    if constexpr (sizeof...(M) != sizeof...(F)) {
-        return false;
-    } else {
-        return (std::is_same_v<typename M::Format, F> && ...);
-    }
-}
-static_assert(same_material_kinds(Materials{}, MaterialFormats{}),
+template <class M>
+using FormatOf = typename M::Format;
+static_assert(same_order<FormatOf>(Materials{}, MaterialFormats{}),
               "Materials lists the kinds of MaterialFormats, each by its Format, in order");
 
 // f(M{}) for each kind M, in order (a default-constructed M as a tag).

@@ -35,15 +35,9 @@ template <class S>
 inline constexpr ShapeKind kind_of = ShapeKind(1 + IndexIn<S, Shapes>::value);
 
 // Shapes and ShapeDescs list the same kinds in the same order.
-template <class... S, class... D>
-constexpr bool same_shape_kinds(ShapeList<S...>, KindList<D...>) {
-    if constexpr (sizeof...(S) != sizeof...(D)) {
-        return false;
-    } else {
-        return (std::is_same_v<typename S::Desc, D> && ...);
-    }
-}
-static_assert(same_shape_kinds(Shapes{}, ShapeDescs{}),
+template <class S>
+using DescOf = typename S::Desc;
+static_assert(same_order<DescOf>(Shapes{}, ShapeDescs{}),
               "Shapes lists the kinds of ShapeDescs, each by its Desc, in order");
 
 // f(S{}) for each kind S of Shapes, in order (a default-constructed S as a tag).
