@@ -17,7 +17,7 @@ CXXFLAGS ?= -O3
 # functions evaluated exactly alike for both triangles sharing an edge, which
 # contraction breaks (rays slipped through the diagonal of simple.json's quad).
 # Appended last, so it wins over a -ffp-contract in the user's CXXFLAGS.
-override CXXFLAGS += -std=c++17 -Wall -Wextra -Wpedantic -Wshadow -Wswitch-enum -MMD -MP -ffp-contract=off
+override CXXFLAGS += -std=c++17 -Wall -Wextra -Wpedantic -Wshadow -Wswitch-enum -Werror=switch-enum -MMD -MP -ffp-contract=off
 override CPPFLAGS += -Iinclude
 override LDLIBS   += -lpthread
 

@@ -19,7 +19,7 @@ WEB_CXXFLAGS := $(WEB_ARCH) -O3 -std=c++17 -fexceptions -ffp-contract=off -DRT_N
 # library headers are not Emscripten's).
 WEB_HEADERS := nlohmann stb fast_float
 WEB_SRC := $(filter-out src/app/% src/cli/% src/convert/% src/tools/% src/image/diff_page.cpp src/web/%,$(LIB_SRC)) \
-           src/app/trace_format.cpp src/web/session.cpp
+           src/web/session.cpp
 WEB_ONCE := src/image/stb_impl.cpp src/image/stb_image_impl.cpp
 WEB_DOUBLE_OBJ := $(WEB_SRC:%.cpp=$(WEB_OBJ)/double/%.o) $(WEB_OBJ)/once/src/web/web_main.o
 WEB_FLOAT_OBJ  := $(patsubst %.cpp,$(WEB_OBJ)/float/%.o,$(filter-out $(WEB_ONCE),$(WEB_SRC)))

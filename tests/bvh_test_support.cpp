@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "rt/bvh/bvh.h"
-#include "rt/bvh/traverse.h"
-#include "rt/geometry/intersect.h"
+#include "rt/bvh/intersect.h"
 #include "rt/geometry/scene.h"
+#include "rt/geometry/traverse.h"
 
 namespace bvh_test {
 

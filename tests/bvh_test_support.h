@@ -13,8 +13,8 @@
 #include <vector>
 
 #include "rt/bvh/bvh.h"
-#include "rt/bvh/traverse.h"
 #include "rt/geometry/scene.h"
+#include "rt/geometry/traverse.h"
 
 namespace bvh_test {
 

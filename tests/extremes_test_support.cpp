@@ -11,10 +11,10 @@
 #include <nlohmann/json.hpp>
 
 #include "rt/core/threads.h"
-#include "rt/geometry/scene.h"
 #include "rt/image/image.h"
 #include "rt/loader/load_scene.h"
 #include "rt/render/render.h"
+#include "rt/scene_build/build_scene.h"
 #include "rt/shading/shading.h"
 
 using json = nlohmann::ordered_json;

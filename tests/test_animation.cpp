@@ -13,7 +13,7 @@
 
 #include "rt/app/run.h"
 #include "rt/core/error.h"
-#include "rt/loader/mesh_cache.h"
+#include "rt/scene_build/mesh_cache.h"
 #include "test_support.h"
 
 namespace {

@@ -12,7 +12,7 @@
 
 #include "bvh_test_support.h"
 #include "rt/bvh/bvh.h"
-#include "rt/geometry/scene.h"
+#include "rt/scene_build/build_scene.h"
 
 namespace {
 

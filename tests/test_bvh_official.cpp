@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "bvh_test_support.h"
-#include "rt/bvh/traverse.h"
-#include "rt/geometry/scene.h"
+#include "rt/geometry/traverse.h"
 #include "rt/loader/load_scene.h"
+#include "rt/scene_build/build_scene.h"
 #include "test_support.h"
 
 namespace {

@@ -1,4 +1,4 @@
-// BVH tie tests (include/rt/bvh/traverse.h): hits at the same t go to the lowest primitive
+// BVH tie tests (include/rt/geometry/traverse.h): hits at the same t go to the lowest primitive
 // id (triangles first, then spheres, then planes), with and without culling, on scenes of
 // coincident primitives; and the triangle test's range check, which the traversal's
 // tie-break relies on, accepts a hit under tmax = nextafter(its own t).
@@ -8,9 +8,9 @@
 #include <vector>
 
 #include "bvh_test_support.h"
-#include "rt/bvh/traverse.h"
-#include "rt/geometry/intersect.h"
-#include "rt/geometry/scene.h"
+#include "rt/bvh/intersect.h"
+#include "rt/geometry/traverse.h"
+#include "rt/scene_build/build_scene.h"
 
 namespace {
 
@@ -25,7 +25,7 @@ TEST(BvhProperty, AllCoincident) {
     m.positions = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}};
     for (int i = 0; i < 3000; ++i) m.indices.insert(m.indices.end(), {0, 1, 2});
     d.meshes.push_back(m);
-    for (int i = 0; i < 500; ++i) d.all<rt::Sphere>().push_back({{0, "1", nullptr}, {0, 0, 5}, 1, {}});
+    for (int i = 0; i < 500; ++i) d.all<rt::SphereDesc>().push_back({{0, "1", nullptr}, {0, 0, 5}, 1, {}});
     const rt::Scene s = rt::build_scene(d);
     check_structure(s);
     EXPECT_LE(s.accel.bvh.depth, 64);
@@ -58,8 +58,8 @@ TEST(BvhProperty, TiesAcrossKinds) {
     m.positions = {{-1, -1, 5}, {1, -1, 5}, {0, 1, 5}};
     m.indices = {0, 1, 2};
     d.meshes.push_back(m);
-    d.all<rt::Sphere>().push_back({{0, "1", nullptr}, {0, 0, 6}, 1, {}});  // near root at z = 5
-    d.all<rt::Plane>().push_back({{0, "1"}, {0, 0, 5}, {0, 0, -1}});
+    d.all<rt::SphereDesc>().push_back({{0, "1", nullptr}, {0, 0, 6}, 1, {}});  // near root at z = 5
+    d.all<rt::PlaneDesc>().push_back({{0, "1"}, {0, 0, 5}, {0, 0, -1}});
     const rt::Ray r{{0, 0, 0}, {0, 0, 1}};
     rt::Hit h;
     {
@@ -75,7 +75,7 @@ TEST(BvhProperty, TiesAcrossKinds) {
         EXPECT_EQ(h.kind, rt::ShapeKind::Sphere);
         EXPECT_EQ(h.t, 5);
     }
-    d.all<rt::Sphere>().clear();
+    d.all<rt::SphereDesc>().clear();
     {
         const rt::Scene s = rt::build_scene(d);
         ASSERT_TRUE(rt::closest_hit(s, r, 0, HUGE_VAL, false, h));

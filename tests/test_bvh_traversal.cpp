@@ -1,4 +1,4 @@
-// BVH traversal tests (include/rt/bvh/bvh.h, include/rt/bvh/traverse.h, src/bvh): the scene
+// BVH traversal tests (include/rt/bvh/bvh.h, include/rt/geometry/traverse.h, src/bvh): the scene
 // queries rt::closest_hit and rt::any_hit must give exactly the answer of a brute-force loop
 // over every primitive (same t to the last bit, same primitive, ties in t going to the
 // lowest primitive id: triangles first, then spheres, then planes), the packet queries
@@ -21,8 +21,8 @@
 
 #include "bvh_test_support.h"
 #include "rt/bvh/bvh.h"
-#include "rt/bvh/traverse.h"
-#include "rt/geometry/scene.h"
+#include "rt/geometry/traverse.h"
+#include "rt/scene_build/build_scene.h"
 
 namespace {
 
@@ -113,13 +113,13 @@ rt::SceneDesc random_scene(const SoupSpec& spec, Rng& rng) {
     if (!m.indices.empty()) d.meshes.push_back(m);
     for (int i = 0; i < spec.spheres; ++i) {
         if (i > 0 && rng() % 8 == 0) {
-            d.all<rt::Sphere>().push_back(
-                d.all<rt::Sphere>()[pick(rng, d.all<rt::Sphere>().size())]);  // coincident: exact tie
+            d.all<rt::SphereDesc>().push_back(
+                d.all<rt::SphereDesc>()[pick(rng, d.all<rt::SphereDesc>().size())]);  // coincident: exact tie
         } else {
             rt::SphereDesc sp;
             sp.center = point();
             sp.radius = spec.size * uniform(rng, 0.01, 1);
-            d.all<rt::Sphere>().push_back(sp);
+            d.all<rt::SphereDesc>().push_back(sp);
         }
     }
     for (int i = 0; i < spec.planes; ++i) {
@@ -127,7 +127,7 @@ rt::SceneDesc random_scene(const SoupSpec& spec, Rng& rng) {
         pl.point = point() * Real(1.5);
         pl.normal = (i == 0) ? Vec3{0, 0, 1} : random_unit(rng);
         if (i == 0) pl.point = {0, 0, 0};  // coincides with the clustered triangles at z = 0
-        d.all<rt::Plane>().push_back(pl);
+        d.all<rt::PlaneDesc>().push_back(pl);
     }
     return d;
 }

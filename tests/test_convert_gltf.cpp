@@ -238,7 +238,7 @@ TEST(GltfImport, MeshUsedTwiceIsOneMeshAndAnInstanceUnderTheHierarchy) {
     f.node({{"children", {child}}, {"rotation", {0, 0, std::sqrt(0.5), std::sqrt(0.5)}}});  // 90 degrees about z
     const Imported im = import(tmp, f.write(tmp));
     ASSERT_EQ(im.scene.meshes.size(), 1u);
-    ASSERT_EQ(im.scene.all<rt::Instance>().size(), 2u);  // the mesh drawn as itself, and the instance
+    ASSERT_EQ(im.scene.all<rt::InstanceDesc>().size(), 2u);  // the mesh drawn as itself, and the instance
     EXPECT_EQ(im.tree["Scene"]["Objects"]["MeshInstance"][0]["_baseMeshId"], "1");
     EXPECT_EQ(im.tree["Scene"]["Objects"]["MeshInstance"][0]["_resetTransform"], "true");
     // The child's list is its own matrix, then its parent's: "c2 c3".
@@ -248,7 +248,7 @@ TEST(GltfImport, MeshUsedTwiceIsOneMeshAndAnInstanceUnderTheHierarchy) {
     EXPECT_EQ(a.m[1][3], 2);
     EXPECT_EQ(a.m[2][3], 3);
     // Rz(90) * S(2): x -> 2y, y -> -2x.
-    const rt::Affine& b = im.scene.all<rt::Instance>()[1].transform;
+    const rt::Affine& b = im.scene.all<rt::InstanceDesc>()[1].transform;
     const rt::Vec3 p = b.point({1, 0, 0}), q = b.point({0, 1, 0});
     EXPECT_NEAR(p.x, 0, 1e-15);
     EXPECT_NEAR(p.y, 2, 1e-15);
@@ -500,14 +500,14 @@ TEST(GltfExport, BackToTheSameSceneThroughExtras) {
         // The mesh, its instance (another material), the sphere and the plane, exact.
         ASSERT_EQ(b.meshes.size(), 1u);
         EXPECT_TRUE(same(b.meshes[0].positions[2], {0, 1, 0}));
-        ASSERT_EQ(b.all<rt::Instance>().size(), 2u);
-        EXPECT_EQ(b.all<rt::Instance>()[1].material, 1u);
-        EXPECT_EQ(b.all<rt::Instance>()[1].transform.m[2][3], a.all<rt::Instance>()[1].transform.m[2][3]);
-        ASSERT_EQ(b.all<rt::Sphere>().size(), 1u);
-        EXPECT_TRUE(same(b.all<rt::Sphere>()[0].center, {0.3, 0.1, 0.7}));
-        EXPECT_EQ(b.all<rt::Sphere>()[0].radius, 0.25);
-        ASSERT_EQ(b.all<rt::Plane>().size(), 1u);
-        EXPECT_TRUE(same(b.all<rt::Plane>()[0].normal, {0, 1, 0}));
+        ASSERT_EQ(b.all<rt::InstanceDesc>().size(), 2u);
+        EXPECT_EQ(b.all<rt::InstanceDesc>()[1].material, 1u);
+        EXPECT_EQ(b.all<rt::InstanceDesc>()[1].transform.m[2][3], a.all<rt::InstanceDesc>()[1].transform.m[2][3]);
+        ASSERT_EQ(b.all<rt::SphereDesc>().size(), 1u);
+        EXPECT_TRUE(same(b.all<rt::SphereDesc>()[0].center, {0.3, 0.1, 0.7}));
+        EXPECT_EQ(b.all<rt::SphereDesc>()[0].radius, 0.25);
+        ASSERT_EQ(b.all<rt::PlaneDesc>().size(), 1u);
+        EXPECT_TRUE(same(b.all<rt::PlaneDesc>()[0].normal, {0, 1, 0}));
         EXPECT_TRUE(any_contains(back.notes, "material 2 (Material 2): dielectric, the exported course values"));
     }
 }

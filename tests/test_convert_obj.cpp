@@ -17,9 +17,9 @@
 #include "convert_test_support.h"
 #include "rt/convert/convert.h"
 #include "rt/core/error.h"
-#include "rt/geometry/scene.h"
 #include "rt/loader/load_scene.h"
 #include "rt/render/render.h"
+#include "rt/scene_build/build_scene.h"
 #include "test_support.h"
 
 namespace fs = std::filesystem;
@@ -445,7 +445,7 @@ TEST(ObjExport, OfficialXmlSceneExports) {
     rt::convert_file(path, tmp / "cb.obj");
     const rt::SceneDesc src = rt::load_scene(path);
     const rt::SceneDesc back = (rt::convert_file(tmp / "cb.obj", tmp / "cb.json"), rt::load_scene(tmp / "cb.json"));
-    EXPECT_EQ(triangle_count(back), triangle_count(src) + src.all<rt::Sphere>().size() * 2 * 128 * 63);
+    EXPECT_EQ(triangle_count(back), triangle_count(src) + src.all<rt::SphereDesc>().size() * 2 * 128 * 63);
 }
 
 #endif  // !defined(RT_NO_XML) && !defined(RT_NO_OBJ)

@@ -19,9 +19,9 @@
 #include "convert_test_support.h"
 #include "rt/convert/convert.h"
 #include "rt/core/error.h"
-#include "rt/geometry/scene.h"
 #include "rt/loader/load_scene.h"
 #include "rt/render/render.h"
+#include "rt/scene_build/build_scene.h"
 #include "test_support.h"
 
 namespace fs = std::filesystem;
@@ -95,17 +95,17 @@ std::string canonical(const std::string& path) {
         if (x.material != y.material || x.shading != y.shading || !positions || x.indices != y.indices || !sources)
             differ("mesh " + std::to_string(i) + " (" + x.source + " vs " + y.source + ")");
     }
-    if (a.all<rt::Sphere>().size() != b.all<rt::Sphere>().size()) differ("sphere count");
-    for (size_t i = 0; i < std::min(a.all<rt::Sphere>().size(), b.all<rt::Sphere>().size()); ++i)
-        if (a.all<rt::Sphere>()[i].material != b.all<rt::Sphere>()[i].material ||
-            !same(a.all<rt::Sphere>()[i].center, b.all<rt::Sphere>()[i].center) ||
-            a.all<rt::Sphere>()[i].radius != b.all<rt::Sphere>()[i].radius)
+    if (a.all<rt::SphereDesc>().size() != b.all<rt::SphereDesc>().size()) differ("sphere count");
+    for (size_t i = 0; i < std::min(a.all<rt::SphereDesc>().size(), b.all<rt::SphereDesc>().size()); ++i)
+        if (a.all<rt::SphereDesc>()[i].material != b.all<rt::SphereDesc>()[i].material ||
+            !same(a.all<rt::SphereDesc>()[i].center, b.all<rt::SphereDesc>()[i].center) ||
+            a.all<rt::SphereDesc>()[i].radius != b.all<rt::SphereDesc>()[i].radius)
             differ("sphere " + std::to_string(i));
-    if (a.all<rt::Plane>().size() != b.all<rt::Plane>().size()) differ("plane count");
-    for (size_t i = 0; i < std::min(a.all<rt::Plane>().size(), b.all<rt::Plane>().size()); ++i)
-        if (a.all<rt::Plane>()[i].material != b.all<rt::Plane>()[i].material ||
-            !same(a.all<rt::Plane>()[i].point, b.all<rt::Plane>()[i].point) ||
-            !same(a.all<rt::Plane>()[i].normal, b.all<rt::Plane>()[i].normal))
+    if (a.all<rt::PlaneDesc>().size() != b.all<rt::PlaneDesc>().size()) differ("plane count");
+    for (size_t i = 0; i < std::min(a.all<rt::PlaneDesc>().size(), b.all<rt::PlaneDesc>().size()); ++i)
+        if (a.all<rt::PlaneDesc>()[i].material != b.all<rt::PlaneDesc>()[i].material ||
+            !same(a.all<rt::PlaneDesc>()[i].point, b.all<rt::PlaneDesc>()[i].point) ||
+            !same(a.all<rt::PlaneDesc>()[i].normal, b.all<rt::PlaneDesc>()[i].normal))
             differ("plane " + std::to_string(i));
     if (why.str().empty()) return ::testing::AssertionSuccess();
     return ::testing::AssertionFailure() << why.str();

@@ -197,7 +197,7 @@ TEST(ExtremesFinite, FacingMirrorsAtDepthZeroAndFifty) {
 // Two facing glass spheres inside a closed mirror box, at MaxRecursionDepth 50: each
 // hit on glass spawns a reflected and a refracted ray and in the box both keep hitting
 // things, so the ray tree grows geometrically with the depth unless weak branches are
-// pruned (RenderOptions::min_weight, rt/shading/shading.h). Pruning bounds the work:
+// pruned (TraceOptions::min_weight, rt/shading/shading.h). Pruning bounds the work:
 // at each level of a pixel's ray tree the weights of the rays traced add up to at most
 // 1 (a ray's children share its weight: MirrorReflectance x Fresnel, 1 - Fresnel and
 // Beer's law are all <= 1) and each is at least min_weight, so a level holds at most
@@ -233,7 +233,7 @@ TEST(ExtremesFinite, FacingDielectricsAtDepthFiftyTerminate) {
         const rt::Image img = rt::render(s, 0, o, &stats);
         const uint64_t pixels = uint64_t(img.width) * uint64_t(img.height);
         const uint64_t secondary = stats.rays.reflection + stats.rays.refraction;
-        const double bound = double(pixels) * depth / o.min_weight;
+        const double bound = double(pixels) * depth / o.trace.min_weight;
         std::printf(
             "[extremes] facing dielectrics in a mirror box, MaxRecursionDepth %2d, 8x8 pixels: %llu reflection and "
             "refraction rays (bound %.3g), %llu shadow rays\n",

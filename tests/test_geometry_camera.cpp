@@ -11,8 +11,8 @@
 #include "geometry_test_support.h"
 #include "rt/camera/camera.h"
 #include "rt/core/math.h"
-#include "rt/geometry/scene.h"
 #include "rt/loader/load_scene.h"
+#include "rt/scene_build/build_scene.h"
 
 namespace {
 

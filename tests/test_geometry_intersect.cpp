@@ -1,5 +1,5 @@
 // Geometry tests, intersections: the ray/sphere, ray/triangle and ray/plane tests of
-// include/rt/geometry/intersect.h, and the scene queries rt::closest_hit and rt::any_hit
+// include/rt/bvh/intersect.h, and the scene queries rt::closest_hit and rt::any_hit
 // on tiny hand-built scenes (culling, the meshes' materials and shading, the closest of
 // mixed primitives).
 //
@@ -10,11 +10,11 @@
 #include <limits>
 
 #include "geometry_test_support.h"
-#include "rt/bvh/traverse.h"
+#include "rt/bvh/intersect.h"
 #include "rt/core/math.h"
-#include "rt/geometry/intersect.h"
-#include "rt/geometry/scene.h"
+#include "rt/geometry/traverse.h"
 #include "rt/loader/scene_desc.h"
+#include "rt/scene_build/build_scene.h"
 
 namespace {
 
@@ -304,8 +304,8 @@ TEST(GeometryScene, TrianglesTakeTheirMeshsMaterialAndShading) {
 TEST(GeometryScene, ClosestOfMixedPrimitives) {
     // Along -z from z = 10: plane z = 0 at t 10, sphere radius 1 at z = 3 (t = 6), triangle at z = 5 (t = 5).
     rt::SceneDesc d = empty_desc();
-    d.all<rt::Plane>().push_back({{0, "1"}, {0, 0, 0}, {0, 0, 2}});  // normal gets normalised by build_scene
-    d.all<rt::Sphere>().push_back({{0, "1", nullptr}, {0, 0, 3}, 1, {}});
+    d.all<rt::PlaneDesc>().push_back({{0, "1"}, {0, 0, 0}, {0, 0, 2}});  // normal gets normalised by build_scene
+    d.all<rt::SphereDesc>().push_back({{0, "1", nullptr}, {0, 0, 3}, 1, {}});
     rt::MeshDesc m;
     m.positions = {{-1, -1, 5}, {1, -1, 5}, {0, 1, 5}};
     m.indices = {0, 1, 2};

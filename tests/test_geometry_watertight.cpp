@@ -16,10 +16,10 @@
 #include <vector>
 
 #include "geometry_test_support.h"
-#include "rt/bvh/traverse.h"
 #include "rt/core/math.h"
-#include "rt/geometry/scene.h"
+#include "rt/geometry/traverse.h"
 #include "rt/loader/scene_desc.h"
+#include "rt/scene_build/build_scene.h"
 
 namespace {
 

@@ -21,8 +21,8 @@
 
 #include "rt/bvh/box_test.h"
 #include "rt/bvh/bvh.h"
+#include "rt/bvh/intersect.h"
 #include "rt/bvh/lanes.h"
-#include "rt/geometry/intersect.h"
 
 namespace {
 

@@ -87,17 +87,17 @@ void expect_same(const rt::SceneDesc& a, const rt::SceneDesc& b) {
         for (size_t f = 0; f < x.indices.size() / 3; ++f)
             for (int k = 0; k < 3; ++k) expect_vec(corner(x, f, k), corner(y, f, k), "mesh corner");
     }
-    ASSERT_EQ(a.all<rt::Sphere>().size(), b.all<rt::Sphere>().size());
-    for (size_t i = 0; i < a.all<rt::Sphere>().size(); ++i) {
-        EXPECT_EQ(a.all<rt::Sphere>()[i].material, b.all<rt::Sphere>()[i].material);
-        expect_vec(a.all<rt::Sphere>()[i].center, b.all<rt::Sphere>()[i].center, "sphere centre");
-        EXPECT_EQ(a.all<rt::Sphere>()[i].radius, b.all<rt::Sphere>()[i].radius);
+    ASSERT_EQ(a.all<rt::SphereDesc>().size(), b.all<rt::SphereDesc>().size());
+    for (size_t i = 0; i < a.all<rt::SphereDesc>().size(); ++i) {
+        EXPECT_EQ(a.all<rt::SphereDesc>()[i].material, b.all<rt::SphereDesc>()[i].material);
+        expect_vec(a.all<rt::SphereDesc>()[i].center, b.all<rt::SphereDesc>()[i].center, "sphere centre");
+        EXPECT_EQ(a.all<rt::SphereDesc>()[i].radius, b.all<rt::SphereDesc>()[i].radius);
     }
-    ASSERT_EQ(a.all<rt::Plane>().size(), b.all<rt::Plane>().size());
-    for (size_t i = 0; i < a.all<rt::Plane>().size(); ++i) {
-        EXPECT_EQ(a.all<rt::Plane>()[i].material, b.all<rt::Plane>()[i].material);
-        expect_vec(a.all<rt::Plane>()[i].point, b.all<rt::Plane>()[i].point, "plane point");
-        expect_vec(a.all<rt::Plane>()[i].normal, b.all<rt::Plane>()[i].normal, "plane normal");
+    ASSERT_EQ(a.all<rt::PlaneDesc>().size(), b.all<rt::PlaneDesc>().size());
+    for (size_t i = 0; i < a.all<rt::PlaneDesc>().size(); ++i) {
+        EXPECT_EQ(a.all<rt::PlaneDesc>()[i].material, b.all<rt::PlaneDesc>()[i].material);
+        expect_vec(a.all<rt::PlaneDesc>()[i].point, b.all<rt::PlaneDesc>()[i].point, "plane point");
+        expect_vec(a.all<rt::PlaneDesc>()[i].normal, b.all<rt::PlaneDesc>()[i].normal, "plane normal");
     }
 }
 
@@ -110,8 +110,8 @@ TEST(LoaderValid, SpecSampleScene) {
     ASSERT_EQ(d.point_lights.size(), 1u);
     ASSERT_EQ(d.materials.size(), 1u);
     ASSERT_EQ(d.meshes.size(), 2u);  // the Mesh and the Triangle (a one-triangle mesh)
-    ASSERT_EQ(d.all<rt::Sphere>().size(), 1u);
-    ASSERT_EQ(d.all<rt::Plane>().size(), 1u);
+    ASSERT_EQ(d.all<rt::SphereDesc>().size(), 1u);
+    ASSERT_EQ(d.all<rt::PlaneDesc>().size(), 1u);
 
     expect_vec(d.background, {0, 0, 0}, "background");
     EXPECT_EQ(d.shadow_ray_epsilon, Real(1e-3));
@@ -157,11 +157,11 @@ TEST(LoaderValid, SpecSampleScene) {
     EXPECT_EQ(tri.positions.size(), 3u);
     for (int k = 0; k < 3; ++k) expect_vec(corner(tri, 0, k), kSampleVerts[4 + k], "triangle corner");  // 5 6 7
 
-    EXPECT_EQ(d.all<rt::Sphere>()[0].material, 0u);
-    expect_vec(d.all<rt::Sphere>()[0].center, {-0.875, 1, -2}, "sphere centre (vertex 8)");
-    EXPECT_EQ(d.all<rt::Sphere>()[0].radius, Real(0.3));
-    expect_vec(d.all<rt::Plane>()[0].point, {0, -0.5, 0}, "plane point (vertex 9)");
-    expect_vec(d.all<rt::Plane>()[0].normal, {0, 1, 0}, "plane normal");
+    EXPECT_EQ(d.all<rt::SphereDesc>()[0].material, 0u);
+    expect_vec(d.all<rt::SphereDesc>()[0].center, {-0.875, 1, -2}, "sphere centre (vertex 8)");
+    EXPECT_EQ(d.all<rt::SphereDesc>()[0].radius, Real(0.3));
+    expect_vec(d.all<rt::PlaneDesc>()[0].point, {0, -0.5, 0}, "plane point (vertex 9)");
+    expect_vec(d.all<rt::PlaneDesc>()[0].normal, {0, 1, 0}, "plane normal");
     EXPECT_TRUE(d.warnings.empty()) << d.warnings.front();
 }
 
@@ -178,8 +178,8 @@ TEST(LoaderValid, DefaultsWhenAbsent) {
     EXPECT_TRUE(d.point_lights.empty());
     EXPECT_TRUE(d.materials.empty());
     EXPECT_TRUE(d.meshes.empty());
-    EXPECT_TRUE(d.all<rt::Sphere>().empty());
-    EXPECT_TRUE(d.all<rt::Plane>().empty());
+    EXPECT_TRUE(d.all<rt::SphereDesc>().empty());
+    EXPECT_TRUE(d.all<rt::PlaneDesc>().empty());
     EXPECT_EQ(d.cameras.at(0).width, 4);
     EXPECT_EQ(d.cameras.at(0).height, 3);
 
@@ -240,10 +240,10 @@ TEST(LoaderValid, ArraysWithSeveralElements) {
     EXPECT_EQ(d.cameras[1].image_name, "second.png");
     ASSERT_EQ(d.materials.size(), 2u);
     expect_vec(d.materials[1].diffuse, {0.5, 0.25, 0.125}, "second material");
-    ASSERT_EQ(d.all<rt::Sphere>().size(), 2u);
-    EXPECT_EQ(d.all<rt::Sphere>()[1].material, 1u);  // "_id" 2 -> index 1
-    expect_vec(d.all<rt::Sphere>()[1].center, kSampleVerts[0], "second sphere centre");
-    EXPECT_EQ(d.all<rt::Sphere>()[1].radius, 2.5);
+    ASSERT_EQ(d.all<rt::SphereDesc>().size(), 2u);
+    EXPECT_EQ(d.all<rt::SphereDesc>()[1].material, 1u);  // "_id" 2 -> index 1
+    expect_vec(d.all<rt::SphereDesc>()[1].center, kSampleVerts[0], "second sphere centre");
+    EXPECT_EQ(d.all<rt::SphereDesc>()[1].radius, 2.5);
 }
 
 TEST(LoaderValid, MaterialIdsResolveById) {
@@ -256,7 +256,7 @@ TEST(LoaderValid, MaterialIdsResolveById) {
     j["Scene"]["Materials"]["Material"] = json::array({m2, m1});
     const rt::SceneDesc d = parse(j.dump());
     ASSERT_EQ(d.materials.size(), 2u);
-    const uint32_t sm = d.all<rt::Sphere>().at(0).material;
+    const uint32_t sm = d.all<rt::SphereDesc>().at(0).material;
     ASSERT_LT(sm, 2u);
     expect_vec(d.materials[sm].diffuse, {1, 1, 1}, "the sphere's material is _id 1");
 }

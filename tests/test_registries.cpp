@@ -18,9 +18,9 @@
 #include <string>
 
 #include "rt/core/error.h"
-#include "rt/geometry/scene.h"
 #include "rt/loader/load_scene.h"
 #include "rt/materials/materials.h"
+#include "rt/scene_build/build_scene.h"
 #include "rt/shapes/shapes.h"
 
 namespace {
@@ -41,14 +41,14 @@ std::string scene_with_material(const std::string& material) {
 TEST(MaterialRegistry, EveryTypeWordLoadsAsItsKind) {
     std::set<std::string> names, words;
     int without_word = 0;
-    rt::for_each_material([&](auto k) {
+    rt::for_each_material_format([&](auto k) {
         using M = decltype(k);
         EXPECT_TRUE(names.insert(M::kName).second) << M::kName;
         if (!M::kTypeWord) {
             ++without_word;
             const rt::SceneDesc d =
                 rt::parse_scene(scene_with_material(R"({"DiffuseReflectance": "1 1 1"})"), "m.json");
-            EXPECT_EQ(d.materials.at(0).type, rt::material_type_of<M>) << M::kName;
+            EXPECT_EQ(d.materials.at(0).type, rt::material_type_of_format<M>) << M::kName;
             return;
         }
         EXPECT_TRUE(words.insert(M::kTypeWord).second) << M::kTypeWord;
@@ -57,7 +57,7 @@ TEST(MaterialRegistry, EveryTypeWordLoadsAsItsKind) {
                               R"(", "MirrorReflectance": "0.5 0.5 0.5", "RefractionIndex": "1.5",
                                     "AbsorptionIndex": "2", "AbsorptionCoefficient": "0.1 0.1 0.1"})";
         const rt::SceneDesc d = rt::parse_scene(scene_with_material(m), "m.json");
-        EXPECT_EQ(d.materials.at(0).type, rt::material_type_of<M>) << M::kTypeWord;
+        EXPECT_EQ(d.materials.at(0).type, rt::material_type_of_format<M>) << M::kTypeWord;
         EXPECT_STREQ(rt::material_type_name(d.materials.at(0).type), M::kName);
     });
     EXPECT_EQ(without_word, 1);
@@ -76,7 +76,7 @@ TEST(MaterialRegistry, SecondaryRaysLeaveTheSurfaceAndMakeNoEnergy) {
     rt::for_each_material([&](auto k) {
         using M = decltype(k);
         for (int i = 0; i < 2000; ++i) {
-            rt::MaterialDesc m;
+            rt::Material m;
             m.type = rt::material_type_of<M>;
             m.mirror = {Real(u(rng)), Real(u(rng)), Real(u(rng))};
             m.refraction_index = Real(0.2 + 3 * u(rng));
@@ -93,17 +93,17 @@ TEST(MaterialRegistry, SecondaryRaysLeaveTheSurfaceAndMakeNoEnergy) {
             for (int r = 0; r < out.n; ++r) {
                 const rt::ScatterOut::Secondary& s = out.rays[r];
                 for (Real c : {s.factor.x, s.factor.y, s.factor.z}) {
-                    EXPECT_GE(c, 0) << M::kName;
-                    EXPECT_LE(c, 1) << M::kName;
+                    EXPECT_GE(c, 0) << M::Format::kName;
+                    EXPECT_LE(c, 1) << M::Format::kName;
                 }
                 sum = sum + s.factor;
-                EXPECT_NEAR(rt::length(s.ray.dir), 1, kTol) << M::kName;
+                EXPECT_NEAR(rt::length(s.ray.dir), 1, kTol) << M::Format::kName;
                 // Reflections leave on the facing side, refractions on the other.
                 const Real side = s.kind == rt::RayKind::Refraction ? -1 : 1;
-                EXPECT_NEAR(double(s.ray.org.z), side * 1e-3, kTol) << M::kName;
-                EXPECT_GE(side * s.ray.dir.z, 0) << M::kName;
+                EXPECT_NEAR(double(s.ray.org.z), side * 1e-3, kTol) << M::Format::kName;
+                EXPECT_GE(side * s.ray.dir.z, 0) << M::Format::kName;
             }
-            for (Real c : {sum.x, sum.y, sum.z}) EXPECT_LE(c, 1 + kTol) << M::kName;
+            for (Real c : {sum.x, sum.y, sum.z}) EXPECT_LE(c, 1 + kTol) << M::Format::kName;
         }
     });
 }
@@ -124,7 +124,7 @@ typename S::Desc random_desc(std::mt19937& rng) {
     std::uniform_real_distribution<double> u(-1, 1);
     const auto vec = [&] { return Vec3{Real(u(rng)), Real(u(rng)), Real(u(rng))}; };
     typename S::Desc d;
-    if constexpr (S::kReadAsShape) {
+    if constexpr (S::Desc::kReadAsShape) {
         struct Reader {
             decltype(vec)& v;
             std::mt19937& rng;
@@ -135,9 +135,9 @@ typename S::Desc random_desc(std::mt19937& rng) {
                     if (const Vec3 n = v(); rt::length(n) > Real(0.1)) return n;
             }
         } r{vec, rng};
-        S::read(r, d);
+        S::Desc::read(r, d);
     }
-    if (u(rng) < 0) S::transform(d, random_transform(rng));
+    if (u(rng) < 0) S::Desc::apply_transform(d, random_transform(rng));
     return d;
 }
 
@@ -160,8 +160,8 @@ TEST(ShapeRegistry, HitsLieInTheBoundsWithUnitNormals) {
     const rt::BuildInputs inputs = tetrahedron_inputs();
     rt::for_each_shape([&](auto k) {
         using S = decltype(k);
-        EXPECT_TRUE(keys.insert(S::kKey).second) << S::kKey;
-        EXPECT_STREQ(rt::shape_key(rt::kind_of<S>), S::kKey);
+        EXPECT_TRUE(keys.insert(S::Desc::kKey).second) << S::Desc::kKey;
+        EXPECT_STREQ(rt::shape_key(rt::kind_of<S>), S::Desc::kKey);
         int hits = 0;
         for (int i = 0; i < 2000; ++i) {
             const S shape = S::build(random_desc<S>(rng), inputs);
@@ -176,16 +176,16 @@ TEST(ShapeRegistry, HitsLieInTheBoundsWithUnitNormals) {
             if constexpr (S::kBounded) {
                 const rt::Box b = shape.bounds();
                 for (int a = 0; a < 3; ++a) {
-                    EXPECT_GE(double(p[a]), double(b.lo[a]) - kTol) << S::kKey;
-                    EXPECT_LE(double(p[a]), double(b.hi[a]) + kTol) << S::kKey;
+                    EXPECT_GE(double(p[a]), double(b.lo[a]) - kTol) << S::Desc::kKey;
+                    EXPECT_LE(double(p[a]), double(b.hi[a]) + kTol) << S::Desc::kKey;
                 }
             }
             const rt::Surface s = shape.surface(p, w, part);
-            EXPECT_NEAR(rt::length(s.ng), 1, kTol) << S::kKey;
-            EXPECT_NEAR(rt::length(s.ns), 1, kTol) << S::kKey;
-            EXPECT_GE(rt::dot(s.ng, s.ns), 0) << S::kKey;
+            EXPECT_NEAR(rt::length(s.ng), 1, kTol) << S::Desc::kKey;
+            EXPECT_NEAR(rt::length(s.ns), 1, kTol) << S::Desc::kKey;
+            EXPECT_GE(rt::dot(s.ng, s.ns), 0) << S::Desc::kKey;
         }
-        EXPECT_GT(hits, 100) << S::kKey << ": too few hits to test";
+        EXPECT_GT(hits, 100) << S::Desc::kKey << ": too few hits to test";
     });
     EXPECT_EQ(keys.size(), rt::kShapeKindCount - 1);
 }

@@ -9,10 +9,10 @@
 #include <array>
 #include <string>
 
-#include "rt/geometry/scene.h"
 #include "rt/image/image.h"
 #include "rt/loader/load_scene.h"
 #include "rt/render/render.h"
+#include "rt/scene_build/build_scene.h"
 #include "rt/shading/shading.h"
 
 namespace {
@@ -50,7 +50,7 @@ rt::RenderOptions nearest() {
 
 rt::RenderOptions no_cull() {
     rt::RenderOptions o;
-    o.cull = false;
+    o.trace.cull = false;
     return o;
 }
 

@@ -23,9 +23,9 @@
 #include "rt/app/run.h"
 #include "rt/bvh/bvh.h"
 #include "rt/core/error.h"
-#include "rt/geometry/scene.h"
 #include "rt/loader/load_scene.h"
 #include "rt/render/render.h"
+#include "rt/scene_build/build_scene.h"
 #include "test_support.h"
 
 namespace {
@@ -171,7 +171,7 @@ TEST(Stats, RenderStatsOfTheLibraryEqualTheCommandLines) {
         for (const int threads : {1, 2, 5}) {
             rt::RenderOptions o;
             o.threads = threads;
-            o.cull = cull;
+            o.trace.cull = cull;
             rt::RenderStats st;
             const rt::Image img = rt::render(s, 0, o, &st);
             EXPECT_EQ(st.threads, threads);
@@ -427,7 +427,7 @@ TEST(Stats, RunScenesReturnsARecordPerImage) {
     o.output_dir = dir / "out";
     o.quiet = true;
     o.render.threads = 2;
-    o.max_depth = 2;
+    o.render.max_depth = 2;
     o.bvh.max_leaf = 4;
     const rt::RunReport report = rt::run_scenes({a, dir / "bad.json", a}, o);
     EXPECT_FALSE(report.ok);

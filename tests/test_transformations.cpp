@@ -12,11 +12,11 @@
 #include <string>
 
 #include "loader_test_support.h"
-#include "rt/bvh/traverse.h"
 #include "rt/core/affine.h"
 #include "rt/core/error.h"
-#include "rt/geometry/scene.h"
+#include "rt/geometry/traverse.h"
 #include "rt/loader/load_scene.h"
+#include "rt/scene_build/build_scene.h"
 
 namespace {
 
@@ -75,11 +75,11 @@ TEST(TransformationsLoader, AppliedInTheOrderWritten) {
         {"_id": "3", "Material": "1", "Center": "9", "Radius": "1", "Transformations": "r1 c1"}]})"),
                         kTransforms);
     const rt::SceneDesc d = parse(j.dump());
-    ASSERT_EQ(d.all<rt::Sphere>().size(), 3u);
-    expect_near(d.all<rt::Sphere>()[0].transform.point({0, -0.5, 0}), {1, -1, 0});
-    expect_near(d.all<rt::Sphere>()[1].transform.point({0, -0.5, 0}), {2, -1, 0});
+    ASSERT_EQ(d.all<rt::SphereDesc>().size(), 3u);
+    expect_near(d.all<rt::SphereDesc>()[0].transform.point({0, -0.5, 0}), {1, -1, 0});
+    expect_near(d.all<rt::SphereDesc>()[1].transform.point({0, -0.5, 0}), {2, -1, 0});
     // r1 takes (0, -0.5, 0) to (0.5, 0, 0); c1 adds 7 to y.
-    expect_near(d.all<rt::Sphere>()[2].transform.point({0, -0.5, 0}), {0.5, 7, 0});
+    expect_near(d.all<rt::SphereDesc>()[2].transform.point({0, -0.5, 0}), {0.5, 7, 0});
 }
 
 TEST(TransformationsLoader, LightsCamerasPlanesAndMeshes) {
@@ -96,7 +96,7 @@ TEST(TransformationsLoader, LightsCamerasPlanesAndMeshes) {
     expect_near(d.cameras[0].gaze, {0, 0, -1});  // about the gaze: unchanged, and not translated
     expect_near(d.cameras[0].up, {-1, 0, 0});
     expect_near(d.meshes[0].transform.point(d.meshes[0].positions[0]), {-0.5, 0.5, -7});
-    const rt::PlaneDesc& p = d.all<rt::Plane>()[0];
+    const rt::PlaneDesc& p = d.all<rt::PlaneDesc>()[0];
     expect_near(p.point, {1.5, 0, 0});
     expect_near(p.normal, {0, 1, 0});
 }
@@ -113,7 +113,7 @@ TEST(TransformationsLoader, InstancesResolveTheirBase) {
     const rt::SceneDesc d = parse(j.dump());
     ASSERT_EQ(d.meshes.size(), 1u);
     EXPECT_TRUE(d.meshes[0].instanced);
-    const auto& inst = d.all<rt::Instance>();
+    const auto& inst = d.all<rt::InstanceDesc>();
     ASSERT_EQ(inst.size(), 4u);  // the mesh itself first, then the three in file order
     EXPECT_STREQ(inst[0].key, "Mesh");
     EXPECT_EQ(inst[0].id, "4");
@@ -232,7 +232,7 @@ TEST(TransformationsInstances, TwoLevelsEqualTheMeshMovedOnce) {
         rt::InstanceDesc inst;
         inst.mesh = 0;
         inst.transform = m;
-        instanced.all<rt::Instance>().push_back(inst);
+        instanced.all<rt::InstanceDesc>().push_back(inst);
         const rt::Scene a = rt::build_scene(baked), b = rt::build_scene(instanced);
         ASSERT_EQ(b.geometry.all<rt::Instance>().size(), 1u);
         for (int i = 0; i < 500; ++i) {

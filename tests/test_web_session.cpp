@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "rt/geometry/scene.h"
 #include "rt/loader/load_scene.h"
 #include "rt/render/render.h"
+#include "rt/scene_build/build_scene.h"
 #include "rt/shading/trace.h"
 #include "rt/web/session.h"
 #include "test_support.h"
@@ -56,7 +56,7 @@ TEST(WebSession, PartsMergeIntoTheCommandLinesImage) {
     EXPECT_EQ(info["cameras"][1]["height"], 17);
     const rt::Scene scene = rt::build_scene(rt::load_scene(tmp / "s.json"));
     rt::RenderOptions o;
-    o.cull = false;
+    o.trace.cull = false;
     for (int camera = 0; camera < 2; ++camera) {
         const std::vector<uint8_t> whole = rgba_of(rt::render(scene, camera, o));
         for (int parts : {1, 2, 5}) {

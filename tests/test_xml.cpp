@@ -17,10 +17,10 @@
 
 #include "rt/convert/convert.h"
 #include "rt/core/error.h"
-#include "rt/geometry/scene.h"
 #include "rt/image/image.h"
 #include "rt/loader/load_scene.h"
 #include "rt/render/render.h"
+#include "rt/scene_build/build_scene.h"
 #include "test_support.h"
 
 namespace fs = std::filesystem;

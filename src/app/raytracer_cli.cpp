@@ -19,6 +19,7 @@
 #include "rt/core/error.h"
 #include "rt/image/image.h"
 #include "rt/io/atomic_file.h"
+#include "rt/loader/scene_desc.h"
 
 // The instruction-set level this copy was compiled for (Makefile, ISAS); a build outside
 // the Makefile's copies (the sanitized ones, say) is for the machine it was built on.
@@ -105,13 +106,14 @@ int raytracer_cli(int argc, char** argv) {
                    "the copy of the kernels to run: auto (default: the best this CPU executes; the environment's "
                    "RT_ISA when set), x86-64, avx2 or avx512 (--version names the one running)",
                    [](const std::string&) {});
-    app.add_flag("--cull,!--no-cull", o.render.cull, "back-face culling of camera and reflection rays (default: on)");
+    app.add_flag("--cull,!--no-cull", o.render.trace.cull,
+                 "back-face culling of camera and reflection rays (default: on)");
     cli::add_choice(app, "--rounding", "truncate (default, as the reference images) or nearest", o.render.rounding,
                     {{"truncate", Rounding::Truncate}, {"nearest", Rounding::Nearest}});
     cli::add_number(app, "--min-weight", "W",
                     "do not trace a reflected or refracted ray whose weight in the pixel is below W (0..1, default "
                     "1e-4; 0 traces every ray to MaxRecursionDepth, as the assignment does)",
-                    o.render.min_weight, "a number from 0 to 1", [](double w) { return w >= 0 && w <= 1; });
+                    o.render.trace.min_weight, "a number from 0 to 1", [](double w) { return w >= 0 && w <= 1; });
     cli::add_text(app, "--stats", "FILE", "write figures per image (times, rays by kind, BVH, memory) to FILE as JSON",
                   stats_path, "a file name");
     cli::add_value(app, "--trace", "X,Y",
@@ -163,10 +165,11 @@ int raytracer_cli(int argc, char** argv) {
                    "load, build and render each scene N times (1..1000); the summary line and --stats give the "
                    "median, fastest and slowest run of each phase; every image is written once",
                    o.repeat, 1, 1000);
-    cli::add_whole(app, "--max-depth", "N", "override every scene's MaxRecursionDepth (0..10000)", o.max_depth, 0,
-                   10000);
-    cli::add_number(app, "--epsilon-scale", "F", "multiply every scene's ShadowRayEpsilon by F (> 0)", o.epsilon_scale,
-                    "a positive number", [](double f) { return f > 0 && f < 1e30; });
+    cli::add_whole(app, "--max-depth", "N",
+                   "override every scene's MaxRecursionDepth (0.." + std::to_string(kMaxRecursionDepth) + ")",
+                   o.render.max_depth, 0, kMaxRecursionDepth);
+    cli::add_number(app, "--epsilon-scale", "F", "multiply every scene's ShadowRayEpsilon by F (> 0)",
+                    o.render.epsilon_scale, "a positive number", [](double f) { return f > 0 && f < 1e30; });
     cli::add_whole(app, "--bvh-leaf", "N", "largest BVH leaf (1..1024, default 8 in double, 16 in float)",
                    o.bvh.max_leaf, 1, 1024);
     cli::add_whole(app, "--bvh-bins", "N", "SAH bins per axis (2..16, default 16)", o.bvh.bins, 2, 16);
@@ -195,7 +198,7 @@ int raytracer_cli(int argc, char** argv) {
                 cli::usage_error(std::string(flag) + " " + *out + ": that is a scene file; it is not overwritten");
     });
     if (const auto status = app.parse(argc, argv)) return *status;
-    // main() picked this copy of the program from the same arguments (their last --precision).
+    // main() (src/main.cpp) picked this copy of the program from the same arguments.
     if (float_precision != std::is_same_v<Real, float>) {
         cli::print_error(std::string("internal error: --precision ") + (float_precision ? "float" : "double") +
                          " reached the " + kPrecisionName + " renderer");

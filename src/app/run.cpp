@@ -16,11 +16,11 @@
 #include "rt/cli/parser.h"
 #include "rt/core/count_text.h"
 #include "rt/core/error.h"
-#include "rt/geometry/scene.h"
 #include "rt/image/image.h"
 #include "rt/io/atomic_file.h"
 #include "rt/io/memory.h"
 #include "rt/loader/load_scene.h"
+#include "rt/scene_build/build_scene.h"
 #include "rt/shading/trace.h"
 
 namespace rt {
@@ -32,19 +32,13 @@ std::string bvh_counts(const SceneFigures& f) {
     std::string s = count_of(f.shapes[size_t(ShapeKind::Triangle)], "triangle");
     for_each_shape([&](auto k) {
         using S = decltype(k);
-        if constexpr (S::kBounded) s += ", " + count_of(f.shapes[size_t(kind_of<S>)], S::kNoun, S::kNouns);
+        if constexpr (S::kBounded) s += ", " + count_of(f.shapes[size_t(kind_of<S>)], S::Desc::kNoun, S::Desc::kNouns);
     });
     return s;
 }
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-// The measurement overrides (--max-depth, --epsilon-scale) applied to a built scene.
-void apply_overrides(Scene& scene, const RunOptions& o) {
-    if (o.max_depth >= 0) scene.setup.max_recursion_depth = o.max_depth;
-    scene.setup.shadow_ray_epsilon = static_cast<Real>(scene.setup.shadow_ray_epsilon * o.epsilon_scale);
 }
 
 // A scene ready to render, with what the summary lines and records report of it.
@@ -108,7 +102,7 @@ std::optional<LoadedScene> load_once(const std::string& scene_path, const RunOpt
         const double build_s = seconds_since(b0);
         release_free_memory();  // the scene's descs, freed: back to the system
         const double total_s = seconds_since(t0);
-        apply_overrides(s.scene, o);
+        apply_overrides(s.scene, o.render);
         SceneTimes times;
         times.parse = timing_of({parse_s});
         times.ply = timing_of({ply_s});
@@ -179,8 +173,9 @@ ImageRecord render_camera(const std::string& scene_path, const LoadedScene& s, s
     RenderOptions ropt = o.render;
     app::ProgressLine progress(o.progress && !o.quiet && app::stderr_is_terminal());
     if (progress.enabled()) ropt.progress = [&progress](int done, int total) { progress.update(done, total); };
-    ImageRecord r{scene_path, out, c + 1, cam.width,     cam.height,          s.figures, o.repeat,
-                  {},         {},  {},    o.render.cull, o.render.min_weight, o.bvh,     0};
+    ImageRecord r{scene_path, out, c + 1, cam.width, cam.height,          s.figures,
+                  o.repeat,   {},  {},    {},        o.render.trace.cull, o.render.trace.min_weight,
+                  o.bvh,      0};
     std::vector<double> renders;
     Image img;
     for (int run = 0; run < o.repeat; ++run) {
@@ -299,8 +294,7 @@ int run_trace(const std::string& scene_path, const RunOptions& o, const PixelTra
                          std::to_string(cam.width) + "x" + std::to_string(cam.height) + " image of camera " +
                          std::to_string(req.camera) + " (x 0.." + std::to_string(cam.width - 1) + ", y 0.." +
                          std::to_string(cam.height - 1) + ")");
-    PixelTrace t = trace_pixel(s->scene, req.camera - 1, req.x, req.y, TraceOptions{o.render.cull, o.render.min_weight},
-                               o.render.rounding);
+    PixelTrace t = trace_pixel(s->scene, req.camera - 1, req.x, req.y, o.render.trace, o.render.rounding);
     t.scene = scene_path;
     std::fputs(trace_text(s->scene, t).c_str(), stdout);
     if (req.json_path.empty()) return 0;

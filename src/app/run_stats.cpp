@@ -96,7 +96,7 @@ std::string stats_json(const std::vector<ImageRecord>& images, const std::string
         const SceneFigures& f = r.figures;
         ordered_json prims;
         prims["triangles"] = f.shapes[size_t(ShapeKind::Triangle)];
-        for_each_shape([&](auto k) { prims[decltype(k)::kNouns] = f.shapes[size_t(kind_of<decltype(k)>)]; });
+        for_each_shape([&](auto k) { prims[decltype(k)::Desc::kNouns] = f.shapes[size_t(kind_of<decltype(k)>)]; });
         prims["lights"] = f.lights;
         prims["degenerate_skipped"] = f.degenerate;
         j["primitives"] = prims;

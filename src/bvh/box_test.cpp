@@ -3,7 +3,7 @@
 #include "rt/bvh/box_test.h"
 
 #include "rt/bvh/bvh.h"
-#include "rt/geometry/intersect.h"
+#include "rt/bvh/intersect.h"
 
 namespace rt {
 

@@ -24,9 +24,9 @@ namespace {
 // "3 spheres, 1 plane, ": each kind but triangles, as rtconvert's note counts them.
 std::string shape_counts(const SceneDesc& scene) {
     std::string s;
-    for_each_shape([&](auto k) {
-        using S = decltype(k);
-        s += count_of(scene.all<S>().size(), S::kNoun, S::kNouns) + ", ";
+    for_each_shape_desc([&](auto k) {
+        using D = decltype(k);
+        s += count_of(scene.all<D>().size(), D::kNoun, D::kNouns) + ", ";
     });
     return s;
 }

@@ -19,6 +19,7 @@
 #include "rt/io/atomic_file.h"
 #include "rt/io/files.h"
 #include "rt/loader/scene_desc.h"
+#include "rt/shapes/shapes.h"
 #include "scene_import.h"
 
 namespace rt {
@@ -268,16 +269,29 @@ private:
         }
     }
 
+    // Every kind of shape, instances first (the meshes drawn as themselves, in the loader's
+    // order), then spheres and planes: one add_kind per kind of ShapeDescs, and a kind
+    // missing from ExportedKinds does not compile.
+    using ExportedKinds = KindList<InstanceDesc, SphereDesc, PlaneDesc>;
+    static_assert(ExportedKinds::size == ShapeDescs::size && covers(ExportedKinds{}, ShapeDescs{}),
+                  "the glTF export writes every kind of ShapeDescs");
+
     void add_shapes() {
         const ExportFrame frame = export_frame(scene_, options_.sphere_segments);
-        // Instances, the meshes drawn as themselves first (the loader's order).
-        for (const InstanceDesc& d : scene_.all<Instance>()) {
+        for_each_kind(ExportedKinds{}, [&](auto k) { add_kind(k, frame); });
+    }
+
+    void add_kind(InstanceDesc, const ExportFrame&) {
+        for (const InstanceDesc& d : scene_.all<InstanceDesc>()) {
             const MeshDesc& m = scene_.meshes.at(d.mesh);
-            const std::string name = std::string(d.key ? d.key : Instance::kKey) + " " + d.id;
+            const std::string name = std::string(d.key ? d.key : InstanceDesc::kKey) + " " + d.id;
             add_node(name, mesh_of(d.mesh, d.material, std::string(m.triangle_object ? "Triangle " : "Mesh ") + m.id),
                      d.transform);
         }
-        for (const SphereDesc& d : scene_.all<Sphere>()) {
+    }
+
+    void add_kind(SphereDesc, const ExportFrame& frame) {
+        for (const SphereDesc& d : scene_.all<SphereDesc>()) {
             SphereDesc local = d;
             local.transform = Affine{};
             const Polygons poly = Sphere::polygons(local, frame);
@@ -286,19 +300,22 @@ private:
             const std::string name = "Sphere " + d.id;
             add_node(name, mesh_of(geometries_.size() - 1, d.material, name), d.transform);
         }
-        for (const PlaneDesc& d : scene_.all<Plane>()) {
+        if (!scene_.all<SphereDesc>().empty())
+            result_.notes.push_back(count_of(scene_.all<SphereDesc>().size(), SphereDesc::kNoun, SphereDesc::kNouns) +
+                                    " tessellated, " + count_of(size_t(options_.sphere_segments), "segment"));
+    }
+
+    void add_kind(PlaneDesc, const ExportFrame& frame) {
+        for (const PlaneDesc& d : scene_.all<PlaneDesc>()) {
             const Polygons poly = Plane::polygons(d, frame);
             geometries_.push_back(add_geometry(buffers_, poly.vertices, triangles_of(poly), false, false));
             geometries_.back().extras["plane"] = {{"point", arr(d.point)}, {"normal", arr(d.normal)}};
             const std::string name = "Plane " + d.id;
             add_node(name, mesh_of(geometries_.size() - 1, d.material, name), Affine{});
         }
-        if (!scene_.all<Sphere>().empty())
-            result_.notes.push_back(count_of(scene_.all<Sphere>().size(), "sphere") + " tessellated, " +
-                                    count_of(size_t(options_.sphere_segments), "segment"));
-        if (!scene_.all<Plane>().empty())
-            result_.notes.push_back(count_of(scene_.all<Plane>().size(), "plane") + " as squares of side " +
-                                    course_number(10 * double(frame.extent)));
+        if (!scene_.all<PlaneDesc>().empty())
+            result_.notes.push_back(count_of(scene_.all<PlaneDesc>().size(), PlaneDesc::kNoun, PlaneDesc::kNouns) +
+                                    " as squares of side " + course_number(10 * double(frame.extent)));
     }
 
     void add_cameras() {

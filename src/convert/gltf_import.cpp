@@ -1,8 +1,8 @@
 // glTF 2.0 -> the course's JSON (docs/gltf.md): triangle primitives become meshes (one
 // PLY per accessor pair, further uses MeshInstances of the first), the node hierarchy
 // Composite transformations, perspective cameras and KHR_lights_punctual point lights
-// the scene's, materials by the table of gltf_materials.h. "ceng795" extras written by
-// the export are used where they still agree with what the glTF says.
+// the scene's, materials by the table of gltf_materials.h (gltf_import_materials.cpp). "ceng795"
+// extras written by the export are used where they still agree with what the glTF says.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -10,6 +10,7 @@
 #include <map>
 #include <set>
 
+#include "gltf_import.h"
 #include "gltf_io.h"
 #include "gltf_primitives.h"
 #include "rt/convert/gltf_materials.h"
@@ -24,39 +25,12 @@ namespace rt {
 #ifndef RT_NO_GLTF
 namespace {
 
-using ojson = nlohmann::ordered_json;
-using json = nlohmann::json;
-using V3 = std::array<double, 3>;
 using rtgltf::to_json;
 
 // Extensions the import reads, or may leave aside without changing what a scene shows.
 const std::set<std::string> kUnderstood = {
     "KHR_lights_punctual",  "KHR_materials_transmission",      "KHR_materials_ior",
     "KHR_materials_volume", "KHR_materials_emissive_strength", "KHR_texture_transform"};
-
-V3 apply(const Affine& m, const V3& p, bool point) {
-    V3 out;
-    for (int r = 0; r < 3; ++r)
-        out[size_t(r)] = m.m[r][0] * p[0] + m.m[r][1] * p[1] + m.m[r][2] * p[2] + (point ? m.m[r][3] : 0.0);
-    return out;
-}
-
-// Extras are read only when they hold what the loader accepts (numbers within +-1e30,
-// colours not negative); `out` is left alone otherwise.
-bool number(const json& j, double& out, double lo = -kMaxMagnitude, double hi = kMaxMagnitude) {
-    if (!j.is_number() || !(j.get<double>() >= lo && j.get<double>() <= hi)) return false;
-    out = j.get<double>();
-    return true;
-}
-bool vec3(const json& j, V3& out, double lo = -kMaxMagnitude) {
-    V3 v;
-    if (!j.is_array() || j.size() != 3) return false;
-    for (size_t i = 0; i < 3; ++i)
-        if (!number(j[i], v[i], lo)) return false;
-    out = v;
-    return true;
-}
-bool colour(const json& j, V3& out) { return vec3(j, out, 0); }
 
 // What the import made of a primitive's triangles, the first time a node showed them.
 struct FirstUse {
@@ -97,7 +71,7 @@ public:
         scene_settings(scene);
         scene["Cameras"] = {{"Camera", cameras()}};
         scene["Lights"] = lights();
-        scene["Materials"] = {{"Material", materials()}};
+        scene["Materials"] = {{"Material", import_materials(model_, path_, needs_default_material_, out_)}};
         if (!transforms_.empty()) scene["Transformations"] = {{"Composite", transforms_}};
         if (!vertex_data_.empty()) scene["VertexData"] = {{"_data", vertex_data_}, {"_type", "xyz"}};
         ojson objects = ojson::object();
@@ -562,67 +536,8 @@ private:
             scene["IntersectionTestEpsilon"] = course_number(intersection);
         double depth = 6;
         if (e.is_object() && e.value("maxRecursionDepth", none).is_number_integer())
-            number(e["maxRecursionDepth"], depth, 0, 10000);
+            number(e["maxRecursionDepth"], depth, 0, kMaxRecursionDepth);
         scene["MaxRecursionDepth"] = std::to_string(int(depth));
-    }
-
-    PbrMaterial pbr(const tinygltf::Material& m, const std::string& mp) {
-        PbrMaterial p;
-        const auto& pbr = m.pbrMetallicRoughness;
-        for (size_t k = 0; k < 3 && k < pbr.baseColorFactor.size(); ++k) p.base[k] = pbr.baseColorFactor[k];
-        p.metallic = pbr.metallicFactor;
-        p.roughness = pbr.roughnessFactor;
-        auto ext = [&](const char* name) {
-            const auto it = m.extensions.find(name);
-            return it == m.extensions.end() ? json() : to_json(it->second);
-        };
-        const json t = ext("KHR_materials_transmission"), i = ext("KHR_materials_ior"), v = ext("KHR_materials_volume");
-        if (t.is_object()) p.transmission = t.value("transmissionFactor", 0.0);
-        if (i.is_object()) p.ior = i.value("ior", 1.5);
-        if (v.is_object()) {
-            p.attenuation_distance = v.value("attenuationDistance", HUGE_VAL);
-            V3 a;
-            if (vec3(v.value("attenuationColor", json()), a)) std::copy(a.begin(), a.end(), p.attenuation);
-        }
-        std::vector<std::string> textures;
-        if (pbr.baseColorTexture.index >= 0) textures.push_back("base colour");
-        if (pbr.metallicRoughnessTexture.index >= 0) textures.push_back("metallic-roughness");
-        if (m.normalTexture.index >= 0) textures.push_back("normal");
-        if (m.emissiveTexture.index >= 0) textures.push_back("emissive");
-        if (m.occlusionTexture.index >= 0) textures.push_back("occlusion");
-        if (!textures.empty()) {
-            std::string list;
-            for (const std::string& s : textures) list += (list.empty() ? "" : ", ") + s;
-            warn(mp + ": textures are not in the format (" + list + "): its factors are used");
-        }
-        if (m.emissiveFactor.size() == 3 &&
-            (m.emissiveFactor[0] > 0 || m.emissiveFactor[1] > 0 || m.emissiveFactor[2] > 0))
-            warn(mp + ": emission is not in the format: left out");
-        if (m.alphaMode == "BLEND" || (pbr.baseColorFactor.size() == 4 && pbr.baseColorFactor[3] < 1))
-            warn(mp + ": alpha is not in the format (glass is KHR_materials_transmission): opaque");
-        return p;
-    }
-
-    ojson materials() {
-        ojson list = ojson::array();
-        for (size_t i = 0; i < model_.materials.size(); ++i) {
-            const tinygltf::Material& m = model_.materials[i];
-            const std::string mp = "/materials/" + std::to_string(i);
-            const PbrMaterial p = pbr(m, mp);
-            MaterialDesc exact;
-            const bool from_extras = material_from_extras(ours_in(m.extras), exact) && same_pbr(pbr_of(exact), p);
-            const MaterialDesc d = from_extras ? exact : material_of(p);
-            list.push_back(material_entry(d, i + 1));
-            out_.notes.push_back("material " + std::to_string(i + 1) + " (" + (m.name.empty() ? "unnamed" : m.name) +
-                                 "): " + material_type_name(d.type) +
-                                 (from_extras ? ", the exported course values" : ", from its PBR values"));
-        }
-        if (needs_default_material_) {
-            list.push_back(default_material(model_.materials.size() + 1));
-            out_.notes.push_back("material " + std::to_string(model_.materials.size() + 1) +
-                                 ": default grey, for primitives without a material");
-        }
-        return list;
     }
 
     const std::string& path_;

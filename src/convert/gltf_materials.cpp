@@ -34,37 +34,45 @@ double exponent_of_roughness(double r) {
     return std::min(std::max(2 / (alpha * alpha) - 2, 1.0), 1e6);
 }
 
+namespace {
+
+// Each kind's glTF form, by the kinds of Materials: a kind without one does not compile
+// (pbr_of).
+void pbr_of_kind(PlainMaterial, const MaterialDesc& m, PbrMaterial& p) {
+    p.metallic = 0;
+    for (int i = 0; i < 3; ++i) p.base[i] = clamp01(double(m.diffuse[i]));
+}
+
+void pbr_of_kind(MirrorMaterial, const MaterialDesc& m, PbrMaterial& p) {
+    p.metallic = 1;
+    for (int i = 0; i < 3; ++i) p.base[i] = clamp01(double(m.mirror[i]));
+}
+
+// The same reflectance at normal incidence as the course's conductor.
+void pbr_of_kind(ConductorMaterial, const MaterialDesc& m, PbrMaterial& p) {
+    p.metallic = 1;
+    const double f = conductor_f0(double(m.refraction_index), double(m.absorption_index)) /
+                     conductor_f0(kMetalRefractionIndex, kMetalAbsorptionIndex);
+    for (int i = 0; i < 3; ++i) p.base[i] = clamp01(double(m.mirror[i]) * f);
+}
+
+void pbr_of_kind(DielectricMaterial, const MaterialDesc& m, PbrMaterial& p) {
+    p.metallic = 0;
+    p.transmission = 1;
+    p.ior = double(m.refraction_index);
+    // Beer's law: white light keeps exp(-c) of itself over one unit of distance.
+    if (m.absorption_coefficient[0] > 0 || m.absorption_coefficient[1] > 0 || m.absorption_coefficient[2] > 0) {
+        p.attenuation_distance = 1;
+        for (int i = 0; i < 3; ++i) p.attenuation[i] = std::exp(-double(m.absorption_coefficient[i]));
+    }
+}
+
+}  // namespace
+
 PbrMaterial pbr_of(const MaterialDesc& m) {
     PbrMaterial p;
     p.roughness = roughness_of_exponent(double(m.phong_exponent));
-    switch (m.type) {
-        case MaterialType::Plain:
-            p.metallic = 0;
-            for (int i = 0; i < 3; ++i) p.base[i] = clamp01(double(m.diffuse[i]));
-            break;
-        case MaterialType::Mirror:
-            p.metallic = 1;
-            for (int i = 0; i < 3; ++i) p.base[i] = clamp01(double(m.mirror[i]));
-            break;
-        case MaterialType::Conductor: {
-            // The same reflectance at normal incidence as the course's conductor.
-            p.metallic = 1;
-            const double f = conductor_f0(double(m.refraction_index), double(m.absorption_index)) /
-                             conductor_f0(kMetalRefractionIndex, kMetalAbsorptionIndex);
-            for (int i = 0; i < 3; ++i) p.base[i] = clamp01(double(m.mirror[i]) * f);
-            break;
-        }
-        case MaterialType::Dielectric:
-            p.metallic = 0;
-            p.transmission = 1;
-            p.ior = double(m.refraction_index);
-            // Beer's law: white light keeps exp(-c) of itself over one unit of distance.
-            if (m.absorption_coefficient[0] > 0 || m.absorption_coefficient[1] > 0 || m.absorption_coefficient[2] > 0) {
-                p.attenuation_distance = 1;
-                for (int i = 0; i < 3; ++i) p.attenuation[i] = std::exp(-double(m.absorption_coefficient[i]));
-            }
-            break;
-    }
+    visit_material<void>(m.type, [&](auto k) { pbr_of_kind(k, m, p); });
     return p;
 }
 
@@ -111,7 +119,7 @@ bool same_pbr(const PbrMaterial& a, const PbrMaterial& b) {
 nlohmann::ordered_json material_entry(const MaterialDesc& m, size_t id) {
     nlohmann::ordered_json j = nlohmann::ordered_json::object();
     j["_id"] = std::to_string(id);
-    visit_material<void>(m.type, [&](auto k) {
+    visit_material_format<void>(m.type, [&](auto k) {
         using M = decltype(k);
         if (M::kTypeWord) j["_type"] = M::kTypeWord;
     });
@@ -120,7 +128,7 @@ nlohmann::ordered_json material_entry(const MaterialDesc& m, size_t id) {
     j["SpecularReflectance"] = course_vec(arr(m.specular));
     j["PhongExponent"] = course_number(double(m.phong_exponent));
     // The kind's own keys (rt/materials/), each a field of MaterialDesc.
-    visit_material<void>(m.type, [&](auto k) {
+    visit_material_format<void>(m.type, [&](auto k) {
         for (const char* key : decltype(k)::kKeys) {
             if (!std::strcmp(key, "MirrorReflectance")) j[key] = course_vec(arr(m.mirror));
             if (!std::strcmp(key, "RefractionIndex")) j[key] = course_number(double(m.refraction_index));
@@ -167,10 +175,10 @@ bool material_from_extras(const nlohmann::json& j, MaterialDesc& m) {
     const auto type = j.find("type");
     if (type == j.end() || !type->is_string()) return false;
     bool known = false;
-    for_each_material([&](auto k) {
+    for_each_material_format([&](auto k) {
         using M = decltype(k);
         if (*type == M::kName) {
-            m.type = material_type_of<M>;
+            m.type = material_type_of_format<M>;
             known = true;
         }
     });

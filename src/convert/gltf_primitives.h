@@ -13,13 +13,21 @@
 #include <vector>
 
 #include "gltf_io.h"
+#include "rt/core/affine.h"
 
 namespace rt {
 
-// The length of v, and a - b: the import keeps glTF's coordinates in double, whatever Real is.
+// The length of v, a - b, and p moved by m (a point, or a direction without the
+// translation): the import keeps glTF's coordinates in double, whatever Real is.
 inline double norm(const std::array<double, 3>& v) { return std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]); }
 inline std::array<double, 3> sub(const std::array<double, 3>& a, const std::array<double, 3>& b) {
     return {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+}
+inline std::array<double, 3> apply(const Affine& m, const std::array<double, 3>& p, bool point) {
+    std::array<double, 3> out;
+    for (int r = 0; r < 3; ++r)
+        out[size_t(r)] = m.m[r][0] * p[0] + m.m[r][1] * p[1] + m.m[r][2] * p[2] + (point ? m.m[r][3] : 0.0);
+    return out;
 }
 
 // A triangle list from one POSITION accessor and one indices accessor.

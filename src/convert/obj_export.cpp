@@ -7,6 +7,8 @@
 #include <string>
 
 #include "rt/convert/convert.h"
+#include "rt/materials/materials.h"
+#include "rt/shapes/shapes.h"
 
 namespace rt {
 namespace {
@@ -86,7 +88,8 @@ ExportFrame export_frame(const SceneDesc& scene, int sphere_segments) {
             for (const Vec3& p : m.positions) b.add(m.transform.point(p));
     for_each_shape([&](auto k) {
         using S = decltype(k);
-        for (const typename S::Desc& e : scene.all<S>()) S::extent(e, scene.meshes, [&b](Vec3 p) { b.add(p); });
+        for (const typename S::Desc& e : scene.all<typename S::Desc>())
+            S::extent(e, scene.meshes, [&b](Vec3 p) { b.add(p); });
     });
     for (const CameraDesc& c : scene.cameras) b.add(c.position);
     for (const PointLightDesc& l : scene.point_lights) b.add(l.position);
@@ -125,9 +128,10 @@ ObjText scene_to_obj(const SceneDesc& scene, const std::string& mtl_file_name, i
     const ExportFrame frame = export_frame(scene, sphere_segments);
     for_each_shape([&](auto k) {
         using S = decltype(k);
-        const std::vector<typename S::Desc>& list = scene.all<S>();
+        const std::vector<typename S::Desc>& list = scene.all<typename S::Desc>();
         for (size_t i = 0; i < list.size(); ++i)
-            write(std::string(S::kNoun) + "_" + std::to_string(i + 1), list[i].material, S::polygons(list[i], frame));
+            write(std::string(S::Desc::kNoun) + "_" + std::to_string(i + 1), list[i].material,
+                  S::polygons(list[i], frame));
     });
     out.obj = std::move(w.text);
 

@@ -38,9 +38,9 @@ std::string ShapeNames::name(ShapeRef s) const {
     const NameList& named = ids[size_t(s.kind)];
     return visit_shape<std::string>(s.kind, [&](auto k) {
         using S = decltype(k);
-        if (s.index >= named.size()) return S::kNoun + (" #" + index);
+        if (s.index >= named.size()) return S::Desc::kNoun + (" #" + index);
         const char* key = named.key(s.index);
-        return std::string(key ? key : S::kKey) + " " + std::string(named.id(s.index));
+        return std::string(key ? key : S::Desc::kKey) + " " + std::string(named.id(s.index));
     });
 }
 

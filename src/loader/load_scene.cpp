@@ -10,15 +10,15 @@ namespace rt {
 
 bool is_xml_path(const std::string& path) { return lower_extension(path) == ".xml"; }
 
-SceneDesc parse_scene(const std::string& json_text, const std::string& path, MeshCache* meshes) {
+SceneDesc parse_scene(const std::string& json_text, const std::string& path, PlyCache* meshes) {
     return scene_from_json(parse_json_tree<nlohmann::json>(json_text, path), path, meshes);
 }
 
-SceneDesc parse_scene_xml(const std::string& xml_text, const std::string& path, MeshCache* meshes) {
+SceneDesc parse_scene_xml(const std::string& xml_text, const std::string& path, PlyCache* meshes) {
     return scene_from_json(nlohmann::json(xml_to_json_tree(xml_text, path)), path, meshes);
 }
 
-SceneDesc load_scene(const std::string& path, MeshCache* meshes) {
+SceneDesc load_scene(const std::string& path, PlyCache* meshes) {
     // The text is released once parsed, and the tree once walked: neither is needed
     // while the meshes are read and their BVHs built (the peak of a large scene's load).
     SceneDesc desc;

@@ -4,13 +4,13 @@
 
 #include "json_fields.h"
 #include "rt/core/error.h"
-#include "rt/loader/mesh_cache.h"
 #include "rt/loader/ply.h"
+#include "rt/loader/ply_cache.h"
 #include "rt/loader/scene_tree.h"
 
 namespace rt {
 
-void read_mesh_files(SceneDesc& desc, MeshCache* meshes) {
+void read_mesh_files(SceneDesc& desc, PlyCache* meshes) {
     const JsonFields scene(desc.path);  // its errors: "<scene>: <pointer>: <what>"
     for (MeshDesc& mesh : desc.meshes) {
         if (mesh.ply_pointer.empty()) continue;

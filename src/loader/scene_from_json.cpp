@@ -14,7 +14,6 @@
 #include <unordered_map>
 
 #include "json_fields.h"
-#include "rt/camera/camera.h"
 #include "rt/core/affine.h"
 #include "rt/io/files.h"
 #include "rt/loader/scene_tree.h"
@@ -26,11 +25,10 @@ using nlohmann::json;
 
 // Largest image we agree to allocate (refused before allocating).
 constexpr long long kMaxPixels = 1LL << 28;
-constexpr int kMaxRecursionDepthLimit = 10000;
 
 class Loader : JsonFields {
 public:
-    Loader(const std::string& path, SceneDesc& out, MeshCache* meshes)
+    Loader(const std::string& path, SceneDesc& out, PlyCache* meshes)
         : JsonFields(path), dir_(dirname_of(path)), out_(out), meshes_(meshes) {}
 
     void load(const json& root) {
@@ -50,8 +48,8 @@ public:
             out_.intersection_test_epsilon = non_negative(*v, sp + "/IntersectionTestEpsilon");
         if (const json* v = find(scene, "MaxRecursionDepth")) {
             const long long d = integer(*v, sp + "/MaxRecursionDepth");
-            if (d < 0 || d > kMaxRecursionDepthLimit)
-                fail(sp + "/MaxRecursionDepth", "must be between 0 and " + std::to_string(kMaxRecursionDepthLimit));
+            if (d < 0 || d > kMaxRecursionDepth)
+                fail(sp + "/MaxRecursionDepth", "must be between 0 and " + std::to_string(kMaxRecursionDepth));
             out_.max_recursion_depth = static_cast<int>(d);
         }
 
@@ -68,7 +66,7 @@ public:
 private:
     std::string dir_;
     SceneDesc& out_;
-    MeshCache* meshes_;                                       // an animation's shared meshes, or null
+    PlyCache* meshes_;                                        // an animation's shared meshes, or null
     std::vector<Vec3> vertices_;                              // VertexData, 0-based
     std::unordered_map<std::string, uint32_t> material_ids_;  // _id -> index
     std::unordered_map<std::string, Affine> transforms_;      // "t2", "s1", "r3", "c1" -> its matrix
@@ -229,12 +227,12 @@ private:
         expect_object(*ms, path);
         check_keys(*ms, path, {"Material"});
         const std::string generic = path + "/Material";
-        // The keys every kind shares, then each kind's own (rt/materials/materials.h);
+        // The keys every kind shares, then each kind's own (rt/loader/material_desc.h);
         // the _type words, for the message.
         std::vector<const char*> keys = {
             "_id", "_type", "AmbientReflectance", "DiffuseReflectance", "SpecularReflectance", "PhongExponent"};
         std::string words;
-        for_each_material([&](auto k) {
+        for_each_material_format([&](auto k) {
             using M = decltype(k);
             for (const char* key : M::kKeys)
                 if (std::none_of(keys.begin(), keys.end(), [&](const char* x) { return std::strcmp(x, key) == 0; }))
@@ -249,10 +247,10 @@ private:
             if (const json* t = find(m, "_type")) {
                 const std::string& ty = text(*t, mp + "/_type");
                 bool known = false;
-                for_each_material([&](auto k) {
+                for_each_material_format([&](auto k) {
                     using M = decltype(k);
                     if (M::kTypeWord && ty == M::kTypeWord) {
-                        d.type = material_type_of<M>;
+                        d.type = material_type_of_format<M>;
                         known = true;
                     }
                 });
@@ -265,7 +263,7 @@ private:
             if (const json* v = find(m, "SpecularReflectance")) d.specular = color(*v, mp + "/SpecularReflectance");
             if (const json* v = find(m, "PhongExponent")) d.phong_exponent = non_negative(*v, mp + "/PhongExponent");
             FieldReader r{*this, m, mp};
-            visit_material<void>(d.type, [&](auto k) { decltype(k)::read(r, d); });
+            visit_material_format<void>(d.type, [&](auto k) { decltype(k)::read(r, d); });
             std::string id = std::to_string(out_.materials.size() + 1);
             if (const json* v = find(m, "_id")) id = std::to_string(integer(*v, mp + "/_id"));
             if (!material_ids_.emplace(id, static_cast<uint32_t>(out_.materials.size())).second)
@@ -380,7 +378,7 @@ private:
         if (!os || os->is_null()) return;
         expect_object(*os, path);
         std::vector<const char*> kinds = {"Mesh", "Triangle"};
-        for_each_shape([&](auto k) { kinds.push_back(decltype(k)::kKey); });
+        for_each_shape_desc([&](auto k) { kinds.push_back(decltype(k)::kKey); });
         check_keys(*os, path, kinds);
 
         size_t meshes = 0, triangles = 0;  // positions among their kind, for object_id
@@ -445,18 +443,18 @@ private:
             out_.meshes.push_back(std::move(mesh));
         });
 
-        // The other kinds (rt/shapes/shapes.h), each by its own reader.
-        for_each_shape([&](auto k) {
-            using S = decltype(k);
-            if constexpr (S::kReadAsShape) {
-                std::vector<typename S::Desc>& list = out_.all<S>();
-                for_each_item(*os, path, S::kKey, [&](const json& e, const std::string& ep) {
-                    check_keys(e, path + "/" + S::kKey, S::kKeys);
-                    typename S::Desc d;
+        // The other kinds (rt/loader/shape_descs.h), each by its own reader.
+        for_each_shape_desc([&](auto k) {
+            using D = decltype(k);
+            if constexpr (D::kReadAsShape) {
+                std::vector<D>& list = out_.all<D>();
+                for_each_item(*os, path, D::kKey, [&](const json& e, const std::string& ep) {
+                    check_keys(e, path + "/" + D::kKey, D::kKeys);
+                    D d;
                     d.material = material_ref(e, ep);
                     FieldReader r{*this, e, ep};
-                    S::read(r, d);
-                    if (const std::optional<Affine> m = transform_ref(e, ep)) S::transform(d, *m);
+                    D::read(r, d);
+                    if (const std::optional<Affine> m = transform_ref(e, ep)) D::apply_transform(d, *m);
                     d.id = object_id(e, list.size() + 1);
                     list.push_back(std::move(d));
                 });
@@ -493,15 +491,15 @@ private:
     // the base's, or replace them with _resetTransform "true"; Material, when given,
     // replaces the base's (docs/transformations.md).
     void load_instances(const json& os, const std::string& path) {
-        if (const json* list = find(os, Instance::kKey); list && list->is_array()) instances_.reserve(list->size());
-        for_each_item(os, path, Instance::kKey, [&](const json& e, const std::string& ep) {
-            check_keys(e, path + "/" + Instance::kKey, Instance::kKeys);
+        if (const json* list = find(os, InstanceDesc::kKey); list && list->is_array()) instances_.reserve(list->size());
+        for_each_item(os, path, InstanceDesc::kKey, [&](const json& e, const std::string& ep) {
+            check_keys(e, path + "/" + InstanceDesc::kKey, InstanceDesc::kKeys);
             PendingInstance p{&e, ep, 0, {}};
             p.desc.id = object_id(e, instances_.size() + 1);
             add_base(p.desc.id, Base{true, static_cast<uint32_t>(instances_.size()), ep});
             instances_.push_back(std::move(p));
         });
-        std::vector<InstanceDesc>& list = out_.all<Instance>();
+        std::vector<InstanceDesc>& list = out_.all<InstanceDesc>();
         for (size_t i = 0; i < instances_.size(); ++i) resolve_instance(i);
         // Sized once: growing by doubling would hold two copies of the list at its peak.
         list.reserve(list.size() + out_.meshes.size() + instances_.size());
@@ -571,14 +569,14 @@ private:
 
 }  // namespace
 
-SceneDesc describe_scene(const json& root, const std::string& path, MeshCache* meshes) {
+SceneDesc describe_scene(const json& root, const std::string& path, PlyCache* meshes) {
     SceneDesc d;
     d.path = path;
     Loader(path, d, meshes).load(root);
     return d;
 }
 
-SceneDesc scene_from_json(const json& root, const std::string& path, MeshCache* meshes) {
+SceneDesc scene_from_json(const json& root, const std::string& path, PlyCache* meshes) {
     SceneDesc d = describe_scene(root, path, meshes);
     read_mesh_files(d, meshes);
     return d;

@@ -10,12 +10,17 @@
 #include <thread>
 #include <vector>
 
-#include "rt/bvh/traverse.h"
 #include "rt/core/threads.h"
+#include "rt/geometry/traverse.h"
 #include "rt/render/render.h"
 #include "rt/shading/shading.h"
 
 namespace rt {
+
+void apply_overrides(Scene& scene, const RenderOptions& options) {
+    if (options.max_depth >= 0) scene.setup.max_recursion_depth = options.max_depth;
+    scene.setup.shadow_ray_epsilon = static_cast<Real>(scene.setup.shadow_ray_epsilon * options.epsilon_scale);
+}
 
 Image render(const Scene& scene, size_t camera_index, const RenderOptions& options, RenderStats* stats) {
     const Camera& cam = scene.setup.cameras.at(camera_index);
@@ -35,7 +40,7 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
     // This part's tiles: part, part + parts, ...
     const int tiles = all_tiles > part ? (all_tiles - part + parts - 1) / parts : 0;
     std::atomic<int> next{0};
-    const TraceOptions topt{options.cull, options.min_weight};
+    const TraceOptions& topt = options.trace;
     const bool watch = static_cast<bool>(options.progress);
 
     int threads = options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency());

@@ -3,9 +3,10 @@
 #include <cmath>
 #include <limits>
 
-#include "rt/bvh/traverse.h"
-#include "rt/geometry/intersect.h"
+#include "rt/bvh/intersect.h"
 #include "rt/geometry/scene.h"
+#include "rt/geometry/traverse.h"
+#include "rt/materials/materials.h"
 #include "rt/shading/shading.h"
 #include "rt/shading/trace.h"
 

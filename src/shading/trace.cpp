@@ -25,8 +25,9 @@ PixelTrace trace_pixel(const Scene& scene, size_t camera, int x, int y, const Tr
     t.y = y;
     t.rounding = rounding;
     t.min_weight = options.min_weight;
-    // The render's own calls (render.cpp): the camera's primary ray, trace_primary and
-    // quantize; a fresh cache, whose hints never change a result.
+    // The render's own computation (render.cpp): the camera's primary ray, its radiance
+    // (trace_primary, which the render's packets, trace_primaries, equal) and quantize;
+    // a fresh cache, whose hints never change a result.
     TraceCache cache;
     const Vec3 c = trace_primary(scene, scene.setup.cameras.at(camera).primary_ray(x, y), options, &cache, &t.root);
     t.clamped = {clamp_channel(c.x), clamp_channel(c.y), clamp_channel(c.z)};

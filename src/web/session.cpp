@@ -9,9 +9,9 @@
 #include <vector>
 
 #include "rt/core/error.h"
-#include "rt/geometry/scene.h"
 #include "rt/loader/load_scene.h"
 #include "rt/render/render.h"
+#include "rt/scene_build/build_scene.h"
 #include "rt/shading/trace.h"
 
 namespace rt::web {
@@ -30,7 +30,7 @@ Session& session() {
 }
 
 // The command line's options of the same names (rt/app/run.h, docs/web.md).
-void read_options(const std::string& text, Session& s, int& max_depth, double& epsilon_scale) {
+void read_options(const std::string& text, RenderOptions& r) {
     if (text.empty()) return;
     const nlohmann::json o = nlohmann::json::parse(text);
     if (!o.is_object()) throw UsageError("options: expected a JSON object");
@@ -38,16 +38,16 @@ void read_options(const std::string& text, Session& s, int& max_depth, double& e
         const std::string& k = it.key();
         const nlohmann::json& v = it.value();
         if (k == "cull" && v.is_boolean()) {
-            s.render.cull = v.get<bool>();
+            r.trace.cull = v.get<bool>();
         } else if (k == "max_depth" && v.is_number_integer() && v.get<long long>() >= -1 &&
-                   v.get<long long>() <= 10000) {
-            max_depth = v.get<int>();
+                   v.get<long long>() <= kMaxRecursionDepth) {
+            r.max_depth = v.get<int>();
         } else if (k == "epsilon_scale" && v.is_number() && v.get<double>() > 0) {
-            epsilon_scale = v.get<double>();
+            r.epsilon_scale = v.get<double>();
         } else if (k == "min_weight" && v.is_number() && v.get<double>() >= 0 && v.get<double>() <= 1) {
-            s.render.min_weight = v.get<double>();
+            r.trace.min_weight = v.get<double>();
         } else if (k == "rounding" && v.is_string() && (v == "truncate" || v == "nearest")) {
-            s.render.rounding = v == "nearest" ? Rounding::Nearest : Rounding::Truncate;
+            r.rounding = v == "nearest" ? Rounding::Nearest : Rounding::Truncate;
         } else {
             throw UsageError("options: " + k + ": unknown option or bad value " + v.dump());
         }
@@ -60,16 +60,12 @@ std::string load(const std::string& scene_path, const std::string& options_json)
     Session& s = session();
     s = Session{};
     try {
-        int max_depth = -1;
-        double epsilon_scale = 1;
-        read_options(options_json, s, max_depth, epsilon_scale);
+        read_options(options_json, s.render);
         s.render.threads = 1;  // one worker, one thread: the page runs several workers
         SceneDesc desc = load_scene(scene_path);
         s.warnings = desc.warnings;
         s.scene = build_scene(std::move(desc));
-        // As the command line's --max-depth and --epsilon-scale (apply_overrides).
-        if (max_depth >= 0) s.scene->setup.max_recursion_depth = max_depth;
-        s.scene->setup.shadow_ray_epsilon = static_cast<Real>(s.scene->setup.shadow_ray_epsilon * epsilon_scale);
+        apply_overrides(*s.scene, s.render);  // as the command line's --max-depth and --epsilon-scale
         s.path = scene_path;
         return "";
     } catch (const std::exception& e) {
@@ -127,8 +123,7 @@ std::string trace(int camera, int x, int y) {
                                                 " is outside the " + std::to_string(c.width) + "x" +
                                                 std::to_string(c.height) + " image"}}
                 .dump();
-        PixelTrace t = trace_pixel(*s.scene, static_cast<size_t>(camera), x, y,
-                                   TraceOptions{s.render.cull, s.render.min_weight}, s.render.rounding);
+        PixelTrace t = trace_pixel(*s.scene, static_cast<size_t>(camera), x, y, s.render.trace, s.render.rounding);
         t.scene = s.path;
         return trace_json(*s.scene, t);
     } catch (const std::exception& e) {

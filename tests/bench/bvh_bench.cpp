@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "rt/core/error.h"
-#include "rt/geometry/scene.h"
 #include "rt/loader/load_scene.h"
+#include "rt/scene_build/build_scene.h"
 
 namespace {
 

@@ -16,8 +16,8 @@
 #include <string>
 
 #include "rt/core/error.h"
-#include "rt/geometry/scene.h"
 #include "rt/loader/load_scene.h"
+#include "rt/scene_build/build_scene.h"
 #include "rt/shading/shading.h"
 
 namespace {
@@ -71,7 +71,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     // rays per camera, a bounded recursion depth, a bounded primitive count.
     size_t tris = 0;
     for (const rt::MeshDesc& m : desc.meshes) tris += m.indices.size() / 3;
-    if (tris + desc.all<rt::Sphere>().size() > 5000) return 0;
+    if (tris + desc.all<rt::SphereDesc>().size() > 5000) return 0;
     if (desc.max_recursion_depth > 8) desc.max_recursion_depth = 8;
     const rt::Scene scene = rt::build_scene(desc);
     const rt::TraceOptions opt{true};

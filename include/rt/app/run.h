@@ -17,19 +17,17 @@ struct Scene;
 class MeshCache;
 
 struct RunOptions {
-    std::string output_dir;    // relative ImageNames go under it (created); "": the current folder
-    RenderOptions render;      // threads, culling, rounding (the progress callback is set per image)
-    BvhBuildOptions bvh;       // BVH build knobs, for measurements
-    bool quiet = false;        // stderr: errors only
-    bool strict = false;       // every warning is an error: the scene is bad input, no image
-    bool progress = true;      // a progress line while each image renders, when stderr is a terminal
-    int max_depth = -1;        // >= 0: overrides every scene's MaxRecursionDepth
-    double epsilon_scale = 1;  // multiplies every scene's ShadowRayEpsilon
-    int repeat = 1;            // --repeat: each scene loaded, built and each image rendered this
-                               // many times, for timing; every image is written once
-    bool frames = false;       // --frames or --shard picked the files: an animation's frames
+    std::string output_dir;  // relative ImageNames go under it (created); "": the current folder
+    RenderOptions render;    // threads, tracing, rounding, overrides (the progress callback is set per image)
+    BvhBuildOptions bvh;     // BVH build knobs, for measurements
+    bool quiet = false;      // stderr: errors only
+    bool strict = false;     // every warning is an error: the scene is bad input, no image
+    bool progress = true;    // a progress line while each image renders, when stderr is a terminal
+    int repeat = 1;          // --repeat: each scene loaded, built and each image rendered this
+                             // many times, for timing; every image is written once
+    bool frames = false;     // --frames or --shard picked the files: an animation's frames
     // Set by run_scenes for several files or for frames: the meshes they share, each PLY
-    // file parsed and each mesh's BVH built once (rt/loader/mesh_cache.h).
+    // file parsed and each mesh's BVH built once (rt/scene_build/mesh_cache.h).
     MeshCache* meshes = nullptr;
 };
 

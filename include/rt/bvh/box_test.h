@@ -14,8 +14,8 @@
 #include <limits>
 
 #include "rt/bvh/bvh.h"
+#include "rt/bvh/intersect.h"
 #include "rt/bvh/lanes.h"
-#include "rt/geometry/intersect.h"
 
 namespace rt::traversal {
 

@@ -1,5 +1,5 @@
 // Lane types of the BVH traversal's kernels: the box test (rt/bvh/box_test.h) and the
-// leaves' edge stage (rt/bvh/leaf_test.h) are each written once, over a type O whose
+// leaves' edge stage (rt/geometry/leaf_test.h) are each written once, over a type O whose
 // O::V holds O::kLanes values of one precision. Every type does the same IEEE
 // operation in each lane, so every width gives the same bits (tests/test_lanes.cpp
 // checks it for each type compiled in). OneLane is plain C++ (the reference and the

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "rt/core/math.h"
-#include "rt/loader/scene_desc.h"
+#include "rt/loader/camera_desc.h"
 
 namespace rt {
 
@@ -23,21 +23,6 @@ struct Camera {
         return {position, normalize(d)};
     }
 };
-
-// The two camera types of the scene file (spec 3) as a CameraDesc: the loader reads and
-// checks the values, these set the gaze and the near plane's extents from them.
-//
-// "lookAt": the gaze runs from Position to `gaze_point`; FovY (degrees) spans a near
-// plane symmetric about it vertically, the aspect ratio comes from the resolution.
-// Needs d.position, d.near_distance, d.width and d.height set; gaze_point != position
-// and 0 < fovy_degrees < 180.
-void set_look_at(CameraDesc& d, const Vec3& gaze_point, Real fovy_degrees);
-// "simple" (no _type): the gaze and the NearPlane extents as written.
-void set_near_plane(CameraDesc& d, const Vec3& gaze, Real left, Real right, Real bottom, Real top);
-
-// Whether `gaze` and `up` (both non-zero) make a camera frame: make_camera's
-// u = up x w must not vanish, so up must not be parallel to the gaze.
-bool spans_camera_frame(const Vec3& gaze, const Vec3& up);
 
 // The loader has already checked the gaze is non-zero and spans a frame with up.
 Camera make_camera(const CameraDesc& desc);

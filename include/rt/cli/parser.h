@@ -99,7 +99,7 @@ void add_value(Parser& parser, const std::string& names, const std::string& valu
 // An option taking a text into `target`; an empty one is a usage error "<option> needs <what>".
 template <class App>
 auto add_text(App& app, const std::string& names, const std::string& value, const std::string& help,
-                             std::string& target, const std::string& what) {
+              std::string& target, const std::string& what) {
     return add_value(app, names, value, help, [option = long_name(names), &target, what](const std::string& v) {
         if (v.empty()) usage_error(option + " needs " + what);
         target = v;
@@ -108,8 +108,8 @@ auto add_text(App& app, const std::string& names, const std::string& value, cons
 
 // An option taking a whole number in [lo, hi] into `target`.
 template <class App, class T>
-auto add_whole(App& app, const std::string& names, const std::string& value, const std::string& help,
-                       T& target, long lo, long hi) {
+auto add_whole(App& app, const std::string& names, const std::string& value, const std::string& help, T& target,
+               long lo, long hi) {
     return add_value(app, names, value, help, [option = long_name(names), &target, lo, hi](const std::string& v) {
         target = static_cast<T>(whole_number(option, v, lo, hi));
     });
@@ -117,8 +117,8 @@ auto add_whole(App& app, const std::string& names, const std::string& value, con
 
 // An option taking a number for which `ok` holds into `target` (see number()).
 template <class App, class T>
-auto add_number(App& app, const std::string& names, const std::string& value, const std::string& help,
-                        T& target, const std::string& what, bool (*ok)(double)) {
+auto add_number(App& app, const std::string& names, const std::string& value, const std::string& help, T& target,
+                const std::string& what, bool (*ok)(double)) {
     return add_value(app, names, value, help, [option = long_name(names), &target, what, ok](const std::string& v) {
         target = static_cast<T>(number(option, v, what, ok));
     });
@@ -127,7 +127,7 @@ auto add_number(App& app, const std::string& names, const std::string& value, co
 // An option taking one of the words of `choices` (MODE in --help); `target` gets its value.
 template <class App, class T>
 auto add_choice(App& app, const std::string& names, const std::string& help, T& target,
-                        const std::vector<std::pair<std::string, T>>& choices) {
+                const std::vector<std::pair<std::string, T>>& choices) {
     std::vector<std::string> words;
     for (const auto& c : choices) words.push_back(c.first);
     return add_value(app, names, "MODE", help,

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "rt/loader/scene_desc.h"
+#include "rt/shapes/shape.h"
 
 namespace rt {
 

@@ -23,6 +23,29 @@ struct IndexIn<K, KindList<K, T...>> : std::integral_constant<size_t, 0> {};
 template <class K, class U, class... T>
 struct IndexIn<K, KindList<U, T...>> : std::integral_constant<size_t, 1 + IndexIn<K, KindList<T...>>::value> {};
 
+// Whether two lists hold the same kinds in the same order, a kind K of the first seen as
+// Of<K> (the renderer's registries against the loader's: a shape by its desc, a material
+// by its format).
+template <template <class> class Of, class... K, class... D>
+constexpr bool same_order(KindList<K...>, KindList<D...>) {
+    if constexpr (sizeof...(K) != sizeof...(D)) {
+        return false;
+    } else {
+        return (std::is_same_v<Of<K>, D> && ...);
+    }
+}
+
+// Whether the first list holds every kind of the second (a list kept in an order of its
+// own, checked against a registry).
+template <class B, class... A>
+constexpr bool holds(KindList<A...>) {
+    return (std::is_same_v<B, A> || ...);
+}
+template <class... A, class... B>
+constexpr bool covers(KindList<A...> list, KindList<B...>) {
+    return (holds<B>(list) && ...);
+}
+
 // The loop and the dispatch are forced inline: they sit in the traversal's and the
 // shading's inner loops, where a call per kind costs (docs/performance.md).
 

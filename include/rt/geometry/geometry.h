@@ -4,7 +4,7 @@
 //
 // Every primitive has an id: ids number the kinds in ShapeKind order, triangles first.
 // The bounded kinds come first: their ids are the BVH's; the unbounded ones after them
-// are tested by every ray on its own (src/bvh/closest.cpp, any_hit.cpp). Ids are the closest-hit
+// are tested by every ray on its own (src/geometry/closest.cpp, any_hit.cpp). Ids are the closest-hit
 // tie-break, so their order is part of the images.
 #pragma once
 #include <algorithm>
@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "rt/bvh/bvh.h"
+#include "rt/bvh/intersect.h"
 #include "rt/core/uninit_vector.h"
-#include "rt/geometry/intersect.h"
 #include "rt/shapes/shapes.h"
 
 namespace rt {

@@ -1,4 +1,4 @@
-// Triangle vertices in BVH leaf order, for the leaf kernels (rt/bvh/leaf_test.h).
+// Triangle vertices in BVH leaf order, for the leaf kernels (rt/geometry/leaf_test.h).
 #pragma once
 #include <cstddef>
 #include <cstdint>

@@ -1,5 +1,5 @@
 // The scene as written in the file: plain typed structs, filled by the loader
-// (src/loader) and consumed by the scene builder (src/geometry/build_scene.cpp).
+// (src/loader) and consumed by the scene builder (src/scene_build/build_scene.cpp).
 // Ids in the file are 1-based; everything here is 0-based and has been
 // range-checked by the loader, so the builder never sees a bad index.
 #pragma once
@@ -9,8 +9,9 @@
 
 #include "rt/core/affine.h"
 #include "rt/core/math.h"
-#include "rt/materials/materials.h"
-#include "rt/shapes/shapes.h"
+#include "rt/loader/camera_desc.h"
+#include "rt/loader/material_desc.h"
+#include "rt/loader/shape_descs.h"
 
 namespace rt {
 
@@ -18,13 +19,9 @@ namespace rt {
 // keeps its boxes in float (max ~3.4e38), and squared distances must stay finite.
 constexpr double kMaxMagnitude = 1e30;
 
-struct CameraDesc {
-    Vec3 position, gaze, up;                          // gaze is a direction (lookAt cameras: GazePoint - Position)
-    Real left = -1, right = 1, bottom = -1, top = 1;  // near plane extents
-    Real near_distance = 1;
-    int width = 0, height = 0;
-    std::string image_name;
-};
+// MaxRecursionDepth's bound: the loader's, and that of the overrides (--max-depth, the page's
+// max_depth) and of the glTF import.
+constexpr int kMaxRecursionDepth = 10000;
 
 struct PointLightDesc {
     Vec3 position, intensity;
@@ -50,12 +47,13 @@ struct MeshDesc {
     std::string id;
     // Its Transformations: the positions above as written -> the world.
     Affine transform;
-    // Drawn as an instance of itself (rt/shapes/instance.h), its positions kept as
+    // Drawn as an instance of itself (InstanceDesc), its positions kept as
     // written: shown by a MeshInstance, or moved by Transformations. Otherwise its
     // transform is the identity.
     bool instanced = false;
-    // Read through a MeshCache: the PLY file's path and content, under which its BVH is
-    // shared by every frame that reads the same file (rt/loader/mesh_cache.h).
+    // Read through a PlyCache (an animation's MeshCache): the PLY file's path and
+    // content, under which its BVH is shared by every frame that reads the same file
+    // (rt/scene_build/mesh_cache.h).
     std::string content_key;
 };
 
@@ -70,18 +68,18 @@ struct SceneDesc {
     std::vector<PointLightDesc> point_lights;
     std::vector<MaterialDesc> materials;
     std::vector<MeshDesc> meshes;       // Objects/Triangle entries become one-triangle flat meshes
-    ShapeDescVectors shapes;            // the other kinds (rt/shapes/shapes.h): all<Sphere>(), ...
+    ShapeDescVectors shapes;            // the other kinds (rt/loader/shape_descs.h): all<SphereDesc>(), ...
     std::vector<std::string> warnings;  // unknown keys, skipped degenerate triangles, ...
     double ply_seconds = 0;             // spent reading PLY files, for --stats
 
-    // The entries of kind S (rt/shapes/shapes.h), in file order.
-    template <class S>
-    std::vector<typename S::Desc>& all() {
-        return std::get<IndexIn<S, Shapes>::value>(shapes);
+    // The entries of desc kind D (rt/loader/shape_descs.h), in file order.
+    template <class D>
+    std::vector<D>& all() {
+        return std::get<IndexIn<D, ShapeDescs>::value>(shapes);
     }
-    template <class S>
-    const std::vector<typename S::Desc>& all() const {
-        return std::get<IndexIn<S, Shapes>::value>(shapes);
+    template <class D>
+    const std::vector<D>& all() const {
+        return std::get<IndexIn<D, ShapeDescs>::value>(shapes);
     }
 };
 

@@ -20,7 +20,7 @@
 
 #include <string>
 
-#include "rt/loader/mesh_cache.h"
+#include "rt/loader/ply_cache.h"
 #include "rt/loader/scene_desc.h"
 
 namespace rt {
@@ -43,13 +43,13 @@ nlohmann::ordered_json xml_to_json_tree(const std::string& xml_text, const std::
 // Walks a scene tree ({"Scene": {...}}) into a SceneDesc. `path` names the file in
 // messages and anchors relative PLY paths. Throws rt::InputError
 // "<path>: <json pointer>: <what>". `meshes`: see load_scene.
-SceneDesc scene_from_json(const nlohmann::json& root, const std::string& path, MeshCache* meshes = nullptr);
+SceneDesc scene_from_json(const nlohmann::json& root, const std::string& path, PlyCache* meshes = nullptr);
 
 // scene_from_json in two steps, so that the tree can be released between them (the
 // peak of a large scene's load): describe_scene walks the tree and leaves each PLY mesh
 // unread (MeshDesc::ply_pointer set, no positions); read_mesh_files reads them, through
 // `meshes` when given, and checks their coordinates. The same errors as scene_from_json.
-SceneDesc describe_scene(const nlohmann::json& root, const std::string& path, MeshCache* meshes = nullptr);
-void read_mesh_files(SceneDesc& desc, MeshCache* meshes = nullptr);
+SceneDesc describe_scene(const nlohmann::json& root, const std::string& path, PlyCache* meshes = nullptr);
+void read_mesh_files(SceneDesc& desc, PlyCache* meshes = nullptr);
 
 }  // namespace rt

@@ -7,19 +7,11 @@
 namespace rt {
 
 struct ConductorMaterial {
-    static constexpr const char* kName = "conductor";
-    static constexpr const char* kTypeWord = "conductor";
-    static constexpr const char* kKeys[] = {"MirrorReflectance", "RefractionIndex", "AbsorptionIndex"};
+    using Format = ConductorMaterialFormat;  // what the scene file says (rt/loader/material_desc.h)
     static constexpr bool kShadedFromInside = true;
     static constexpr bool kRefracts = false;
 
-    template <class Reader>
-    static void read(Reader& r, MaterialDesc& d) {
-        d.mirror = r.color("MirrorReflectance");
-        d.refraction_index = r.positive("RefractionIndex");
-        d.absorption_index = r.non_negative("AbsorptionIndex");
-    }
-    static void scatter(const MaterialDesc& m, const ScatterIn& in, ScatterOut& out) {
+    static void scatter(const Material& m, const ScatterIn& in, ScatterOut& out) {
         out.has_fresnel = true;
         out.fresnel = fresnel_conductor_terms(in.cos_i, m.refraction_index, m.absorption_index);
         out.add(m.mirror * out.fresnel.reflectance, in.reflected(), kNoMedium, RayKind::Reflection);

@@ -10,24 +10,13 @@
 namespace rt {
 
 struct DielectricMaterial {
-    static constexpr const char* kName = "dielectric";
-    static constexpr const char* kTypeWord = "dielectric";
-    static constexpr const char* kKeys[] = {"MirrorReflectance", "RefractionIndex", "AbsorptionCoefficient"};
+    using Format = DielectricMaterialFormat;  // what the scene file says (rt/loader/material_desc.h)
     static constexpr bool kShadedFromInside = false;
     static constexpr bool kRefracts = true;
 
-    // MirrorReflectance defaults to 1 1 1 (the course's 2021 cornellbox_recursive
-    // glass has none).
-    template <class Reader>
-    static void read(Reader& r, MaterialDesc& d) {
-        d.mirror = r.color_or("MirrorReflectance", {1, 1, 1});
-        d.refraction_index = r.positive("RefractionIndex");
-        d.absorption_coefficient = r.color_or("AbsorptionCoefficient", {0, 0, 0});
-    }
-
     // A ray reflected off the inside or refracted in travels inside this dielectric
     // (docs/conventions.md, "Inside a dielectric").
-    static void scatter(const MaterialDesc& m, const ScatterIn& in, ScatterOut& out) {
+    static void scatter(const Material& m, const ScatterIn& in, ScatterOut& out) {
         const Real eta_i = in.front ? Real(1) : m.refraction_index;
         const Real eta_t = in.front ? m.refraction_index : Real(1);
         const FresnelTerms f = fresnel_dielectric_terms(in.cos_i, eta_i, eta_t);

@@ -1,40 +1,52 @@
-// What every kind of material shares: the fields of its scene-file entry, and what a
-// kind's scatter() gets and gives. One kind of material is one file of
-// include/rt/materials/ (plain.h, mirror.h, conductor.h, dielectric.h); materials.h
-// lists them.
+// What every kind of material shares in the renderer: the material the integrator
+// shades with (built from the scene file's MaterialDesc, rt/loader/material_desc.h), and
+// what a kind's scatter() gets and gives. One kind of material is one file of
+// include/rt/materials/ (plain.h, mirror.h, conductor.h, dielectric.h); materials.h lists
+// them.
 //
 // A kind M provides, each used by exactly one stage:
-//   M::kName, M::kTypeWord   its name (--trace, exports) and its _type word in the scene
-//                            file (nullptr: the kind of a material without _type)
-//   M::kKeys, M::read        loader: the keys its entries may carry beyond the common
-//                            ones, and the reading of them (required keys, defaults)
+//   M::Format                its format (rt/loader/material_desc.h): name, _type word,
+//                            keys and their reading
 //   M::kShadedFromInside     whether the lights shade a hit on its back face
 //   M::kRefracts             whether it sends rays through its surface (--trace)
 //   M::scatter(m, in, out)   integrator: its secondary rays (spec 2.6)
-//   M::mtl(m, w)             OBJ export (rtconvert): its MTL lines
+//   M::mtl(desc, w)          OBJ export (rtconvert): its MTL lines
 #pragma once
 #include <cstdint>
 #include <string>
 
 #include "rt/core/math.h"
-#include "rt/shading/shading.h"
+#include "rt/loader/material_desc.h"
+#include "rt/materials/optics.h"
 
 namespace rt {
 
-enum class MaterialType : uint32_t;
-
-// A material as written in the file (spec 3, "Material"). The fields are the format's
-// material keys; a kind reads those it uses (its read()).
-struct MaterialDesc {
+// A material as the integrator shades with it (spec 2.6), made from its MaterialDesc
+// when the scene is built (make_material). A Plain material's mirror is never read
+// (reference-conventions.md, "Shading").
+struct Material {
     MaterialType type{};
     Vec3 ambient, diffuse, specular;
-    Real phong_exponent = 1;      // spec: PhongExponent; default 1 (reference-conventions.md)
-    Vec3 mirror;                  // MirrorReflectance; ignored for Plain materials
+    Real phong_exponent = 1;
+    Vec3 mirror;                  // MirrorReflectance
     Real refraction_index = 1;    // conductors and dielectrics
     Real absorption_index = 0;    // conductors: imaginary part k of the complex index
     Vec3 absorption_coefficient;  // dielectrics: Beer's law c, per unit distance
     std::string id;               // its _id, for --trace
 };
+
+inline Material make_material(const MaterialDesc& d) {
+    return {d.type,
+            d.ambient,
+            d.diffuse,
+            d.specular,
+            d.phong_exponent,
+            d.mirror,
+            d.refraction_index,
+            d.absorption_index,
+            d.absorption_coefficient,
+            d.id};
+}
 
 // The dielectric a ray travels inside: a material index, or none.
 constexpr int kNoMedium = -1;

@@ -1,7 +1,8 @@
-// The registry of materials: every kind of material the scene format has, each
-// described once in its own file (material.h says what a kind provides). The loader's
-// _type words and keys, the integrator's secondary rays, --trace and the MTL export
-// are derived from this list; see docs/extending.md.
+// The registry of materials in the renderer: every kind of material the scene format
+// has, in the order of their formats (MaterialFormats, rt/loader/material_desc.h), each
+// described once in its own file (material.h says what a kind provides). The integrator's
+// secondary rays, --trace and the exports are derived from this list; see
+// docs/extending.md.
 #pragma once
 #include <cstddef>
 #include <cstdint>
@@ -15,22 +16,21 @@
 
 namespace rt {
 
-enum class MaterialType : uint32_t { Plain, Mirror, Conductor, Dielectric };
-
 // The kinds, in MaterialType order.
 using Materials = KindList<PlainMaterial, MirrorMaterial, ConductorMaterial, DielectricMaterial>;
 
 // ---- Derived from the list ----------------------------------------------------------
 
-// A kind's MaterialType: its place in Materials.
+// A kind's MaterialType: its place in Materials, which is its format's place in
+// MaterialFormats.
 template <class M>
 inline constexpr MaterialType material_type_of = MaterialType(IndexIn<M, Materials>::value);
-static_assert(material_type_of<PlainMaterial> == MaterialType::Plain &&
-                  material_type_of<MirrorMaterial> == MaterialType::Mirror &&
-                  material_type_of<ConductorMaterial> == MaterialType::Conductor &&
-                  material_type_of<DielectricMaterial> == MaterialType::Dielectric,
-              "MaterialType lists the kinds of Materials, in its order");
-inline constexpr size_t kMaterialTypeCount = Materials::size;
+
+// Materials and MaterialFormats list the same kinds in the same order.
+template <class M>
+using FormatOf = typename M::Format;
+static_assert(same_order<FormatOf>(Materials{}, MaterialFormats{}),
+              "Materials lists the kinds of MaterialFormats, each by its Format, in order");
 
 // f(M{}) for each kind M, in order (a default-constructed M as a tag).
 template <class F>
@@ -44,10 +44,6 @@ template <class R, class F>
     return visit_kind<R>(Materials{}, size_t(type), f);
 }
 
-// "plain", "mirror", ...
-inline const char* material_type_name(MaterialType t) {
-    return visit_material<const char*>(t, [](auto m) { return decltype(m)::kName; });
-}
 // Whether the lights shade a hit on the material's back face.
 inline bool shaded_from_inside(MaterialType t) {
     return visit_material<bool>(t, [](auto m) { return decltype(m)::kShadedFromInside; });

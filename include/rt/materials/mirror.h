@@ -5,17 +5,11 @@
 namespace rt {
 
 struct MirrorMaterial {
-    static constexpr const char* kName = "mirror";
-    static constexpr const char* kTypeWord = "mirror";
-    static constexpr const char* kKeys[] = {"MirrorReflectance"};
+    using Format = MirrorMaterialFormat;  // what the scene file says (rt/loader/material_desc.h)
     static constexpr bool kShadedFromInside = true;
     static constexpr bool kRefracts = false;
 
-    template <class Reader>
-    static void read(Reader& r, MaterialDesc& d) {
-        d.mirror = r.color("MirrorReflectance");
-    }
-    static void scatter(const MaterialDesc& m, const ScatterIn& in, ScatterOut& out) {
+    static void scatter(const Material& m, const ScatterIn& in, ScatterOut& out) {
         out.add(m.mirror, in.reflected(), kNoMedium, RayKind::Reflection);
     }
 

@@ -5,19 +5,11 @@
 namespace rt {
 
 struct PlainMaterial {
-    static constexpr const char* kName = "plain";
-    static constexpr const char* kTypeWord = nullptr;
-    static constexpr const char* kKeys[] = {"MirrorReflectance"};
+    using Format = PlainMaterialFormat;  // what the scene file says (rt/loader/material_desc.h)
     static constexpr bool kShadedFromInside = true;
     static constexpr bool kRefracts = false;
 
-    // MirrorReflectance is read (and checked) but not used: the akif_uslu scenes
-    // carry it on plain materials (reference-conventions.md, "Shading").
-    template <class Reader>
-    static void read(Reader& r, MaterialDesc& d) {
-        d.mirror = r.color_or("MirrorReflectance", {1, 1, 1});
-    }
-    static void scatter(const MaterialDesc&, const ScatterIn&, ScatterOut&) {}
+    static void scatter(const Material&, const ScatterIn&, ScatterOut&) {}
 
     template <class Mtl>
     static void mtl(const MaterialDesc& m, Mtl& w) {

@@ -11,11 +11,15 @@ namespace rt {
 // Images render in square tiles of this many pixels a side, row-major (RenderOptions::part).
 inline constexpr int kRenderTile = 16;
 
+// How a run renders, as the command line's options and the page's load options both set
+// it (rt/app/run.h, rt/web/session.h, docs/web.md): tracing, rounding, the overrides of
+// the scene's own values, and the threads and parts of the work.
 struct RenderOptions {
-    int threads = 0;   // 0: all hardware threads
-    bool cull = true;  // back-face culling of camera and reflection rays (spec 2.9)
+    int threads = 0;     // 0: all hardware threads
+    TraceOptions trace;  // back-face culling (spec 2.9) and the minimum ray weight (rt/shading/shading.h)
     Rounding rounding = Rounding::Truncate;
-    double min_weight = kDefaultMinWeight;  // rays of a smaller weight are not traced (rt/shading/shading.h)
+    int max_depth = -1;        // >= 0 (at most kMaxRecursionDepth): overrides the scene's MaxRecursionDepth
+    double epsilon_scale = 1;  // multiplies the scene's ShadowRayEpsilon
     // When set, called on the calling thread about every `progress_interval` seconds
     // while the image renders, with the tiles finished so far and the tile count (never
     // after the last tile: a render shorter than one interval makes no call). The
@@ -35,6 +39,10 @@ struct RenderStats {
     int threads = 0;  // threads that rendered
     int tiles = 0;    // 16x16 tiles
 };
+
+// The overrides of `options` (max_depth, epsilon_scale) applied to a built scene; the
+// command line and the page call it once per scene, before rendering or tracing it.
+void apply_overrides(Scene& scene, const RenderOptions& options);
 
 // Deterministic: the image does not depend on the thread count. `stats`, when
 // given, receives the figures above.

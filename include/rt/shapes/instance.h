@@ -6,8 +6,9 @@
 // direction is not renormalised, so t is the same in both spaces.
 //
 // A mesh that any instance shows is itself drawn as an instance of its object-space
-// triangles (an InstanceDesc with key "Mesh"), so its triangles exist once. What the scene
-// file's _baseMeshId and _resetTransform mean: docs/transformations.md.
+// triangles (an InstanceDesc with key "Mesh", rt/loader/shape_descs.h), so its triangles
+// exist once. The ray test and surface, a query of the mesh's scene, are defined beside
+// the traversal (src/geometry/instance.cpp).
 #pragma once
 #include <cstdint>
 #include <memory>
@@ -19,26 +20,14 @@
 
 namespace rt {
 
-struct InstanceDesc : ShapeDescBase {
-    uint32_t mesh = 0;  // into SceneDesc::meshes: the triangles it shows
-    Affine transform;   // the mesh as written -> the world
-};
-
 struct Instance {
     using Desc = InstanceDesc;
-    static constexpr const char* kKey = "MeshInstance";
-    static constexpr const char* kKeys[] = {"_id", "_baseMeshId", "_resetTransform", "Material", "Transformations"};
-    static constexpr const char* kNoun = "instance";
-    static constexpr const char* kNouns = "instances";
     static constexpr bool kBounded = true;
-    // The loader reads Objects/MeshInstance with the meshes it refers to.
-    static constexpr bool kReadAsShape = false;
 
     const Scene* mesh = nullptr;  // the mesh's triangles and BVH, in object space
     Affine to_object;             // world -> object
     uint32_t material = 0;
 
-    static void transform(Desc& d, const Affine& m) { d.transform = m * d.transform; }
     static Instance build(const Desc& d, const BuildInputs& in);
 
     // The world box around the mesh's box (its BVH root's), moved; empty for an empty mesh.

@@ -1,7 +1,6 @@
-// An infinite plane (spec 3, "Plane"): Objects/Plane, its Point a vertex id, its Normal
-// any non-zero vector (normalised when built). Both sides are hit; it is outside the
-// BVH, so every ray tests every plane. Transformations move its point and carry its
-// normal by the inverse transpose: a moved plane is a plane.
+// An infinite plane (spec 3, "Plane"), built from its PlaneDesc (rt/loader/shape_descs.h),
+// its normal normalised. Both sides are hit; it is outside the BVH, so every ray tests
+// every plane.
 #pragma once
 #include <cmath>
 
@@ -9,10 +8,6 @@
 #include "rt/shapes/shape.h"
 
 namespace rt {
-
-struct PlaneDesc : ShapeDescBase {
-    Vec3 point, normal;
-};
 
 // Infinite plane through `point` with unit `normal`; both sides are hit.
 inline bool intersect_plane(const Ray& r, Vec3 point, Vec3 normal, Real tmin, Real tmax, Real& t) {
@@ -26,25 +21,11 @@ inline bool intersect_plane(const Ray& r, Vec3 point, Vec3 normal, Real tmin, Re
 
 struct Plane {
     using Desc = PlaneDesc;
-    static constexpr const char* kKey = "Plane";
-    static constexpr const char* kKeys[] = {"_id", "Material", "Point", "Normal", "Transformations"};
-    static constexpr const char* kNoun = "plane";
-    static constexpr const char* kNouns = "planes";
     static constexpr bool kBounded = false;
-    static constexpr bool kReadAsShape = true;
 
     Vec3 point, normal;  // normal has unit length
     uint32_t material;
 
-    template <class Reader>
-    static void read(Reader& r, Desc& d) {
-        d.point = r.vertex("Point");
-        d.normal = r.nonzero_vec3("Normal");
-    }
-    static void transform(Desc& d, const Affine& m) {
-        d.point = m.point(d.point);
-        d.normal = normalize(m.inverse().transposed_vector(d.normal));
-    }
     static Plane build(const Desc& d, const BuildInputs&) { return {d.point, normalize(d.normal), d.material}; }
 
     Box bounds() const { return {{-HUGE_VALF, -HUGE_VALF, -HUGE_VALF}, {HUGE_VALF, HUGE_VALF, HUGE_VALF}}; }

@@ -1,22 +1,19 @@
-// What every kind of shape shares: the fields of its scene-file entry, the surface
-// it gives shading, and its polygons for export. One kind of shape is one file of
-// include/rt/shapes/ (sphere.h, plane.h); shapes.h lists them. Triangles, which meshes
+// What every kind of shape shares in the renderer: the surface it gives shading, what
+// its build may use, and its polygons for export. One kind of shape is one file of
+// include/rt/shapes/ (sphere.h, plane.h), built from its desc, which is what the scene
+// file says of it (rt/loader/shape_descs.h); shapes.h lists them. Triangles, which meshes
 // are made of, are the kind the BVH's leaves test in blocks (rt/geometry/geometry.h).
 //
 // A kind S provides, each used by exactly one stage:
-//   S::Desc, S::kKey, S::kKeys, S::read   loader: Objects/<kKey> entries, the keys each
-//                                         may carry, and the reading of its own fields
-//   S::kNoun, S::kNouns                   counts in messages and --stats ("3 spheres")
-//   S::kReadAsShape                       false: the loader reads its entries itself
-//                                         (an instance refers to meshes by id)
-//   S::transform(desc, m)                 the loader: its Transformations (rt/core/affine.h)
+//   S::Desc                               its desc (rt/loader/shape_descs.h): the loader's
+//                                         keys, reading, nouns and transformation
 //   S::kBounded                           true: in the BVH; false: tested by every ray
 //   S::build(desc, inputs)                the render form, built from the desc
 //   s.bounds(), s.intersect<kCull, kShadow>(ray, tmin, tmax, t, w, part),
 //   s.surface(p, w, part)                 the BVH build, ray tests, shading; w and part
 //                                         are what the test found besides t (a kind made
 //                                         of triangles: which one, and where in it)
-//   S::extent(desc, meshes, add), S::polygons(desc, frame)   the OBJ export (rtconvert)
+//   S::extent(desc, meshes, add), S::polygons(desc, frame)   the OBJ and glTF exports
 #pragma once
 #include <algorithm>
 #include <cstdint>
@@ -26,19 +23,12 @@
 
 #include "rt/core/affine.h"
 #include "rt/core/math.h"
+#include "rt/loader/shape_descs.h"
 
 namespace rt {
 
 struct MeshDesc;  // rt/loader/scene_desc.h
 struct Scene;     // rt/geometry/scene.h
-
-// The fields the loader reads for every kind: Material (a 1-based id in the file) and
-// _id, as written (its 1-based position among its kind when it has none).
-struct ShapeDescBase {
-    uint32_t material = 0;  // into SceneDesc::materials
-    std::string id;
-    const char* key = nullptr;  // the entry's Objects/<key> when not its kind's (--trace)
-};
 
 // What shading needs to know about a hit point.
 struct Surface {

@@ -1,4 +1,4 @@
-// A sphere (spec 3, "Sphere"): Objects/Sphere, its Center a vertex id, its Radius > 0.
+// A sphere (spec 3, "Sphere"), built from its SphereDesc (rt/loader/shape_descs.h).
 // Under Transformations it stays a sphere in its own space and is intersected there,
 // so a non-uniform scaling makes an exact ellipsoid (docs/transformations.md).
 #pragma once
@@ -11,12 +11,6 @@
 #include "rt/shapes/shape.h"
 
 namespace rt {
-
-struct SphereDesc : ShapeDescBase {
-    Vec3 center;
-    Real radius = 1;
-    Affine transform;  // the sphere as written -> the world
-};
 
 // Nearest intersection of a unit-direction ray with a sphere in (tmin, tmax).
 // The discriminant is computed as r^2 - |oc - (oc.d) d|^2, which stays accurate
@@ -45,12 +39,7 @@ inline bool intersect_sphere(const Ray& r, Vec3 centre, Real radius, Real tmin, 
 
 struct Sphere {
     using Desc = SphereDesc;
-    static constexpr const char* kKey = "Sphere";
-    static constexpr const char* kKeys[] = {"_id", "Material", "Center", "Radius", "Transformations"};
-    static constexpr const char* kNoun = "sphere";
-    static constexpr const char* kNouns = "spheres";
     static constexpr bool kBounded = true;
-    static constexpr bool kReadAsShape = true;
 
     Vec3 center;
     Real radius;
@@ -59,13 +48,6 @@ struct Sphere {
     bool transformed = false;
     Affine to_unit;
 
-    // `r` reads this entry's fields by key (the loader's checks and messages).
-    template <class Reader>
-    static void read(Reader& r, Desc& d) {
-        d.center = r.vertex("Center");
-        d.radius = r.positive("Radius");
-    }
-    static void transform(Desc& d, const Affine& m) { d.transform = m * d.transform; }
     static Sphere build(const Desc& d, const BuildInputs&) {
         Sphere s{d.center, d.radius, d.material, false, Affine{}};
         if (!d.transform.is_identity()) {

@@ -1,7 +1,8 @@
 // Meshes shared by the scene files of one run, as an animation's frames share them: each
-// PLY file is parsed once and each mesh's BVH built once per process, not once per
-// frame. Entries are keyed by the file's path and a hash of its bytes, so a file that
-// changed between two frames is read again, never served stale.
+// PLY file is parsed once (PlyCache, which the loader reads them through) and each mesh's
+// BVH built once per process (build_scene), not once per frame. Entries are keyed by the
+// file's path and a hash of its bytes, so a file that changed between two frames is read
+// again, never served stale.
 #pragma once
 #include <cstddef>
 #include <functional>
@@ -10,18 +11,14 @@
 #include <mutex>
 #include <string>
 
-#include "rt/loader/ply.h"
+#include "rt/loader/ply_cache.h"
 
 namespace rt {
 
 struct Scene;  // rt/geometry/scene.h
 
-class MeshCache {
+class MeshCache : public PlyCache {
 public:
-    // The PLY file at `path` parsed (read_ply), and in `key` what identifies it: its path,
-    // size and content hash. Parsed only when no file with that key was parsed before.
-    std::shared_ptr<const PlyMesh> ply(const std::string& path, std::string& key);
-
     // The object-space scene (triangles and BVH) stored under `key`, made by `make` the
     // first time it is asked for.
     std::shared_ptr<const Scene> mesh_scene(const std::string& key, const std::function<Scene()>& make);
@@ -34,7 +31,6 @@ public:
 
 private:
     mutable std::mutex mutex_;
-    std::map<std::string, std::shared_ptr<const PlyMesh>> plys_;
     std::map<std::string, std::shared_ptr<const Scene>> scenes_;
     Counts counts_;
 };

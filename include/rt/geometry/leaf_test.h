@@ -8,8 +8,8 @@
 #include <type_traits>
 
 #include "rt/bvh/bvh.h"
+#include "rt/bvh/intersect.h"
 #include "rt/bvh/lanes.h"
-#include "rt/geometry/intersect.h"
 #include "rt/geometry/scene.h"
 
 namespace rt::traversal {

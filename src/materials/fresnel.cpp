@@ -1,8 +1,8 @@
-// The Fresnel equations (spec 2.6; rt/shading/shading.h).
+// The Fresnel equations (spec 2.6; rt/materials/optics.h).
 #include <algorithm>
 #include <cmath>
 
-#include "rt/shading/shading.h"
+#include "rt/materials/optics.h"
 
 namespace rt {
 

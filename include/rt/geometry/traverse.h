@@ -1,5 +1,5 @@
-// The scene's ray queries: closest hit (src/bvh/closest.cpp) and any hit
-// (src/bvh/any_hit.cpp), one ray or a packet of neighbouring rays.
+// The scene's ray queries: closest hit (src/geometry/closest.cpp) and any hit
+// (src/geometry/any_hit.cpp), one ray or a packet of neighbouring rays.
 #pragma once
 #include <cstdint>
 

@@ -1,5 +1,5 @@
 // The watertight ray/triangle test. The other kinds' tests are in their own files
-// (rt/shapes/); the scene queries built on them are in rt/bvh/traverse.h.
+// (rt/shapes/); the scene queries built on them are in rt/geometry/traverse.h.
 #pragma once
 #include <cmath>
 #include <cstdint>
@@ -60,7 +60,7 @@ constexpr T gamma_bound(int n) {
 // The first stage of the watertight triangle test: the vertices relative to the
 // ray origin, sheared (x, y) and unsheared (z), and the three edge functions,
 // u, v, w the unnormalised weights of a, b and c. The traversal computes these
-// for a register of triangles at once with the same operations (rt/bvh/leaf_test.h), so both
+// for a register of triangles at once with the same operations (rt/geometry/leaf_test.h), so both
 // paths give the same bits.
 struct TriEdges {
     Real ax, ay, az, bx, by, bz, cx, cy, cz;

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "rt/core/threads.h"
-#include "rt/geometry/scene.h"
+#include "rt/scene_build/build_scene.h"
 
 namespace rt {
 namespace {
@@ -238,8 +238,10 @@ Scene build(SceneDesc& d, const BvhBuildOptions& bvh, MeshCache* cache) {
     setup.shadow_ray_epsilon = d.shadow_ray_epsilon;
     setup.max_recursion_depth = d.max_recursion_depth;
     for (const CameraDesc& c : d.cameras) setup.cameras.push_back(make_camera(c));
-    setup.lights = std::move(d.point_lights);
-    setup.materials = std::move(d.materials);
+    setup.lights.reserve(d.point_lights.size());
+    for (const PointLightDesc& l : d.point_lights) setup.lights.push_back({l.position, l.intensity});
+    setup.materials.reserve(d.materials.size());
+    for (const MaterialDesc& m : d.materials) setup.materials.push_back(make_material(m));
 
     Geometry& g = s.geometry;
     // The meshes that instances show: in their own space, each with its own BVH
@@ -277,7 +279,7 @@ Scene build(SceneDesc& d, const BvhBuildOptions& bvh, MeshCache* cache) {
     // afterwards the leaf-order vertices that may take their place (copy_leaf_vertices).
     size_t nboxes = ntri;
     for_each_shape([&](auto k) {
-        if constexpr (decltype(k)::kBounded) nboxes += d.all<decltype(k)>().size();
+        if constexpr (decltype(k)::kBounded) nboxes += d.all<typename decltype(k)::Desc>().size();
     });
     ReusableStorage storage(std::max(nboxes * sizeof(BuildBox), LeafVertices::coordinates_for(nboxes) * sizeof(float)));
     BuildBox* const boxes = storage.emplace<BuildBox>(nboxes);
@@ -290,16 +292,17 @@ Scene build(SceneDesc& d, const BvhBuildOptions& bvh, MeshCache* cache) {
     }
     for_each_shape([&](auto k) {
         using S = decltype(k);
-        const size_t n = d.all<S>().size();
+        std::vector<typename S::Desc>& descs = d.all<typename S::Desc>();
+        const size_t n = descs.size();
         g.all<S>().reserve(n);
         s.names.ids[size_t(kind_of<S>)].reserve(n);
-        for (const typename S::Desc& e : d.all<S>()) {
+        for (const typename S::Desc& e : descs) {
             g.all<S>().push_back(S::build(e, inputs));
             s.names.ids[size_t(kind_of<S>)].push_back(e.id, e.key);
         }
         // Released before the BVH is built: a scene of many instances would otherwise
         // hold each one twice at its peak, as desc and as shape.
-        std::vector<typename S::Desc>().swap(d.all<S>());
+        std::vector<typename S::Desc>().swap(descs);
     });
     for (auto& m : inputs.mesh_scenes)
         if (m) g.mesh_scenes.push_back(std::move(m));

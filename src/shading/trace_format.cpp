@@ -1,10 +1,12 @@
-// A pixel's ray tree as indented text and as JSON (rt/shading/trace.h; the format: docs/trace.md).
+// A pixel's ray tree as indented text and as JSON, beside the tree itself (trace.cpp,
+// rt/shading/trace.h; the format: docs/trace.md).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
 #include <string>
 
+#include "rt/materials/materials.h"
 #include "rt/shading/trace.h"
 
 namespace rt {

@@ -1,15 +1,15 @@
 // Closest hit: the BVH traversal for the nearest primitive along a ray (near child
-// first, fixed stack), for one ray or a packet of neighbouring rays (rt/bvh/traverse.h).
+// first, fixed stack), for one ray or a packet of neighbouring rays (rt/geometry/traverse.h).
 #include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <vector>
 
 #include "rt/bvh/box_test.h"
-#include "rt/bvh/leaf_test.h"
+#include "rt/bvh/intersect.h"
 #include "rt/bvh/node_stack.h"
-#include "rt/bvh/traverse.h"
-#include "rt/geometry/intersect.h"
+#include "rt/geometry/leaf_test.h"
+#include "rt/geometry/traverse.h"
 
 namespace rt {
 

@@ -1,12 +1,12 @@
 // Any hit: the BVH traversal for shadow rays, which stops at the first primitive
-// found, for one ray or a packet of neighbouring rays (rt/bvh/traverse.h).
+// found, for one ray or a packet of neighbouring rays (rt/geometry/traverse.h).
 #include <cstdint>
 
 #include "rt/bvh/box_test.h"
-#include "rt/bvh/leaf_test.h"
+#include "rt/bvh/intersect.h"
 #include "rt/bvh/node_stack.h"
-#include "rt/bvh/traverse.h"
-#include "rt/geometry/intersect.h"
+#include "rt/geometry/leaf_test.h"
+#include "rt/geometry/traverse.h"
 
 namespace rt {
 

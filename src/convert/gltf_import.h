@@ -1,0 +1,47 @@
+// Internal: what the glTF import's two files share (gltf_import.cpp: nodes, meshes,
+// cameras, lights; gltf_import_materials.cpp: materials): the reading of extras, and the
+// materials' import.
+#pragma once
+#include <nlohmann/json.hpp>
+
+#include <array>
+#include <string>
+
+#include "gltf_io.h"
+#include "rt/loader/scene_desc.h"
+#include "scene_import.h"
+
+namespace rt {
+
+// The JSON the import writes (in the course's key order) and reads, and a point in double.
+using ojson = nlohmann::ordered_json;
+using json = nlohmann::json;
+using V3 = std::array<double, 3>;
+
+// Extras are read only when they hold what the loader accepts (numbers within +-1e30,
+// colours not negative); `out` is left alone otherwise.
+inline bool number(const json& j, double& out, double lo = -kMaxMagnitude, double hi = kMaxMagnitude) {
+    if (!j.is_number() || !(j.get<double>() >= lo && j.get<double>() <= hi)) return false;
+    out = j.get<double>();
+    return true;
+}
+inline bool vec3(const json& j, V3& out, double lo = -kMaxMagnitude) {
+    V3 v;
+    if (!j.is_array() || j.size() != 3) return false;
+    for (size_t i = 0; i < 3; ++i)
+        if (!number(j[i], v[i], lo)) return false;
+    out = v;
+    return true;
+}
+inline bool colour(const json& j, V3& out) { return vec3(j, out, 0); }
+
+#ifndef RT_NO_GLTF
+// The course's materials of the model's materials (docs/gltf.md, rt/convert/gltf_materials.h):
+// each from the export's exact values while its extras still agree with its PBR factors,
+// else by the table; then, with `with_default` (for primitives without one), a default
+// grey. Warnings of what the format lacks (textures, emission, alpha) and a note per
+// material go to `out`; `path` names the file in them.
+ojson import_materials(const tinygltf::Model& model, const std::string& path, bool with_default, SceneImport& out);
+#endif
+
+}  // namespace rt
