@@ -1,4 +1,4 @@
-// Shading tests, formulas: the reflectance formulas of include/rt/shading/shading.h (the
+// Shading tests, formulas: the reflectance formulas of include/rt/materials/optics.h (the
 // Fresnel equations for dielectrics and conductors, Beer's law), against values worked out
 // by hand in the comments, Snell's law, reciprocity and the complex Fresnel equations.
 #include <gtest/gtest.h>
@@ -7,7 +7,7 @@
 #include <complex>
 #include <limits>
 
-#include "rt/shading/shading.h"
+#include "rt/materials/optics.h"
 
 namespace {
 

@@ -140,7 +140,7 @@ public:
         line(in, "returns " + vec(r.radiance));
     }
 
-    // The Fresnel equations' terms (rt/shading/shading.h, FresnelTerms).
+    // The Fresnel equations' terms (rt/materials/optics.h, FresnelTerms).
     void fresnel(const RayTrace& r, int indent) {
         const FresnelTerms& f = r.fresnel;
         switch (f.formula) {
