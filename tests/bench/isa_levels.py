@@ -17,7 +17,7 @@ sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from shared_scenes import RAYTRACER, shared_dir  # noqa: E402
 
 SCENES = ["hw1/bunny_with_plane.json", "hw1/scienceTree_glass.json", "hw1/spheres.json",
-          "hw1/cornellbox_recursive.json", "hw2/raven/rt_utahteapot_mug_ceng.json"]
+          "hw1/cornellbox_recursive.json", "hw1/raven/rt_utahteapot_mug_ceng.json", "hw2/metal_glass_plates.json"]
 
 
 def render_median(cmd, scene, repeat, threads):
