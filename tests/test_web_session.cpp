@@ -117,6 +117,6 @@ TEST(WebSession, ErrorsAreTheCommandLinesLines) {
 TEST(WebSession, ApiErrorsHaveOnePrefix) {
     if (run_program("/bin/sh", {"-c", "command -v node"}).exit_code != 0)
         GTEST_SKIP() << "node not found (apt-get install nodejs): tests/web/node_api.js not run";
-    const RunResult r = run_program("/usr/bin/env", {"node", "tests/web/node_api.js"});
+    const RunResult r = run_program("/usr/bin/env", {"node", repo_file("tests/web/node_api.js")});
     EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
 }
