@@ -195,7 +195,7 @@ $(foreach i,$(ISAS),$(eval $(call isa_copy,$(i))))
 
 # main.cpp knows the copies from RT_PRIMARY_ISA and RT_WITH_<LEVEL> (rt/app/program.h).
 # Without float it is compiled with RT_NO_FLOAT and refuses --precision float.
-MAIN_FLAGS := -DRT_PRIMARY_ISA='"$(PRIMARY_ISA)"' $(foreach i,$(EXTRA_ISAS),-DRT_WITH_$(shell echo $(i) | tr a-z A-Z)) \
+MAIN_FLAGS := -DRT_PRIMARY_ISA='"$(PRIMARY_ISA)"' $(foreach i,$(EXTRA_ISAS),-DRT_WITH_$(subst avx,AVX,$(i))) \
               $(if $(RT_FLOAT),,-DRT_NO_FLOAT)
 MAIN_OBJ := $(BUILD)/src/main-program.o
 $(MAIN_OBJ): src/main.cpp $(BUILD)/config build/target

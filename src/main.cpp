@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -40,41 +41,41 @@ const Copy kCopies[] = {
 };
 constexpr int kCount = sizeof kCopies / sizeof kCopies[0];
 
-// The value of the last `--name V` or `--name=V` before a "--"; `fallback` without one.
+// The value of the last `--name V` or `--name=V` before a "--"; nullopt without one.
 // A bad value is left to the copy's parser (precision) or reported below (isa).
-std::string last_value(int argc, char** argv, const char* name, std::string fallback) {
+std::optional<std::string> last_value(int argc, char** argv, const char* name) {
     const size_t n = std::strlen(name);
+    std::optional<std::string> value;
     for (int i = 1; i < argc; ++i) {
         const char* a = argv[i];
         if (std::strcmp(a, "--") == 0) break;
         if (std::strcmp(a, name) == 0 && i + 1 < argc)
-            fallback = argv[++i];
+            value = argv[++i];
         else if (std::strncmp(a, name, n) == 0 && a[n] == '=')
-            fallback = a + n + 1;
+            value = a + n + 1;
     }
-    return fallback;
+    return value;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
+    const std::optional<std::string> option = last_value(argc, argv, "--isa");
     const char* env = std::getenv("RT_ISA");
-    const std::string from_env = env ? env : "";
-    const std::string asked = last_value(argc, argv, "--isa", from_env);
+    const std::string asked = option ? *option : env ? env : "";
     std::string built[kCount];
     for (int i = 0; i < kCount; ++i) built[i] = kCopies[i].isa;
     std::string isa;
     try {
         isa = rtcli::choose_isa(asked, built, kCount);
     } catch (const std::invalid_argument& e) {
-        const bool by_option = last_value(argc, argv, "--isa", "\x01") != "\x01";
-        std::fprintf(stderr, "error: %s%s\n", by_option ? "--isa " : "RT_ISA=", e.what());
+        std::fprintf(stderr, "error: %s%s\n", option ? "--isa " : "RT_ISA=", e.what());
         return 2;
     }
     const Copy* copy = kCopies;
     for (const Copy& c : kCopies)
         if (c.isa == isa) copy = &c;
-    if (last_value(argc, argv, "--precision", "double") != "float") return copy->run_double(argc, argv);
+    if (last_value(argc, argv, "--precision") != "float") return copy->run_double(argc, argv);
     if (!copy->run_float) {
         std::fprintf(stderr,
                      "error: --precision float: this build has no float precision; "

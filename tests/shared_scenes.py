@@ -39,3 +39,13 @@ def identical(a, b):
     """rtdiff at tolerance 0: no channel of any pixel differs."""
     r = subprocess.run([RTDIFF, "--tolerance", "0", "--fail-above", "0", a, b], capture_output=True, text=True)
     return r.returncode == 0, (r.stdout + r.stderr).strip().splitlines()[-1:] or [""]
+
+
+def isa_levels():
+    """The instruction-set levels ./raytracer holds (as its refusal of an unknown --isa lists
+    them), and those of them this CPU runs."""
+    r = subprocess.run([RAYTRACER, "--isa", "?"], capture_output=True, text=True)
+    held = r.stderr.strip().rsplit(": ", 1)[-1].split(", ")
+    runs = [lv for lv in held
+            if subprocess.run([RAYTRACER, "--isa", lv, "--version"], capture_output=True).returncode == 0]
+    return held, runs

@@ -14,7 +14,7 @@ import sys
 import tempfile
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from shared_scenes import RAYTRACER, shared_dir  # noqa: E402
+from shared_scenes import RAYTRACER, isa_levels, shared_dir  # noqa: E402
 
 SCENES = ["hw1/bunny_with_plane.json", "hw1/scienceTree_glass.json", "hw1/spheres.json",
           "hw1/cornellbox_recursive.json", "hw1/raven/rt_utahteapot_mug_ceng.json", "hw2/metal_glass_plates.json"]
@@ -40,9 +40,7 @@ def main():
     shared = shared_dir()
     if not shared:
         sys.exit("isa_levels: the course's scenes (../shared or $RT_SHARED_DIR) not found")
-    held = subprocess.run([RAYTRACER, "--isa", "?"], capture_output=True, text=True).stderr.strip()
-    levels = [lv for lv in held.rsplit(": ", 1)[-1].split(", ")
-              if subprocess.run([RAYTRACER, "--isa", lv, "--version"], capture_output=True).returncode == 0]
+    _, levels = isa_levels()
     progs = ([("other", [a.other])] if a.other else []) + [("auto", [RAYTRACER])] + \
         [(lv, [RAYTRACER, "--isa", lv]) for lv in levels]
     print(f"render phase, median of {a.rounds} alternating rounds of --repeat {a.repeat}, {a.threads} threads (s)")

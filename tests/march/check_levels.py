@@ -13,7 +13,7 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from shared_scenes import REPO, RAYTRACER, check, complete_scenes, failures, shared_dir  # noqa: E402
+from shared_scenes import REPO, RAYTRACER, check, complete_scenes, failures, isa_levels, shared_dir  # noqa: E402
 
 OUT = os.path.join(REPO, "build", "march-check")
 CI = os.environ.get("CI") == "true"
@@ -22,15 +22,6 @@ CI = os.environ.get("CI") == "true"
 def loud_skip(what):
     print("*" * 72 + f"\n*** check-march: SKIPPED: {what}\n" + "*" * 72, flush=True)
     check(not CI, f"CI=true and {what} was skipped")
-
-
-def levels():
-    """The levels the binary holds, as its --isa refusal lists them, and those this CPU runs."""
-    r = subprocess.run([RAYTRACER, "--isa", "?"], capture_output=True, text=True)
-    held = r.stderr.strip().rsplit(": ", 1)[-1].split(", ")
-    runs = [lv for lv in held
-            if subprocess.run([RAYTRACER, "--isa", lv, "--version"], capture_output=True).returncode == 0]
-    return held, runs
 
 
 def md5s(folder):
@@ -43,7 +34,7 @@ def md5s(folder):
 
 def main():
     shutil.rmtree(OUT, ignore_errors=True)
-    held, runs = levels()
+    held, runs = isa_levels()
     print(f"check-march: ./raytracer holds {' '.join(held)}; this CPU runs {' '.join(runs)}", flush=True)
     check(len(held) >= 1 and held[0] == runs[0], "the first level is one every CPU runs")
     # Each group into its own folder: scenes of two assignments may write the same image name.
