@@ -37,9 +37,9 @@ const cli::Program& program() {
         "raytracer", "raytracer 1.0 (" RT_ISA_NAME " kernels)",
         "usage: raytracer [-o DIR] [-j N] [--precision double|float] [--isa LEVEL] [--cull|--no-cull]\n"
         "                 [--rounding truncate|nearest] [--min-weight W] [--stats FILE] [-q] [--strict]\n"
-        "                 [--repeat N] [--max-depth N] [--epsilon-scale F] [--bvh-... (measurements)]\n"
-        "                 [--frames A:B] [--shard K/N] scene.json|scene.xml...\n"
-        "       raytracer --trace X,Y [--camera N] [--trace-json FILE] [options] scene.json|scene.xml",
+        "                 [--samples N] [--seed S] [--repeat N] [--max-depth N] [--epsilon-scale F]\n"
+        "                 [--bvh-... (measurements)] [--frames A:B] [--shard K/N] scene.json|scene.xml...\n"
+        "       raytracer --trace X,Y [--camera N] [--sample K] [--trace-json FILE] [options] scene.json|scene.xml",
         "Renders every camera of each scene file (JSON, or the course's older XML format when the\n"
         "name ends in .xml) to the image its ImageName names: PNG (.png) or binary PPM (.ppm).\n",
         "exit status: 0 all images written, 1 bad input or an image could not be written, 2 usage error"};
@@ -91,7 +91,7 @@ int raytracer_cli(int argc, char** argv) {
     std::vector<std::string> scenes;
     std::string stats_path;
     PixelTraceRequest request;
-    bool trace = false, camera_given = false;
+    bool trace = false, camera_given = false, sample_given = false;
     FrameSelection frames;
     cli::Parser app(program());
     cli::add_value(app, "-o,--output-dir", "DIR", "write relative image names under DIR (created if needed)",
@@ -130,8 +130,24 @@ int raytracer_cli(int argc, char** argv) {
                        request.camera = size_t(cli::whole_number("--camera", v, 1, 1 << 30));
                        camera_given = true;
                    });
+    cli::add_value(app, "--sample", "K",
+                   "--trace: with samples per pixel (NumSamples), the sample to trace (0-based, default 0)",
+                   [&request, &sample_given](const std::string& v) {
+                       request.sample = int(cli::whole_number("--sample", v, 0, kMaxSamples - 1));
+                       sample_given = true;
+                   });
     cli::add_text(app, "--trace-json", "FILE", "--trace: also write the ray tree to FILE as JSON", request.json_path,
                   "a file name");
+    app.group("samples (distribution ray tracing: docs/conventions.md, \"Assignment 3\")");
+    cli::add_whole(app, "--samples", "N",
+                   "take N samples per pixel in every camera, in place of its NumSamples (1.." +
+                       std::to_string(kMaxSamples) + "; a quick preview at 4)",
+                   o.render.samples, 1, kMaxSamples);
+    cli::add_value(
+        app, "--seed", "S",
+        "the random numbers' seed (0..2^62, default 0): the same seed gives the same image on any "
+        "machine and thread count, another seed independent noise",
+        [&o](const std::string& v) { o.render.seed = uint64_t(cli::whole_number("--seed", v, 0, long(1) << 62)); });
     app.add_flag("-q,--quiet", o.quiet, "print errors only (and no progress line, which is shown only on a terminal)");
     app.add_flag(
         "--strict", o.strict,
@@ -190,8 +206,8 @@ int raytracer_cli(int argc, char** argv) {
         if (trace && scenes.size() > 1) cli::usage_error("--trace takes one scene file");
         if (trace && o.frames)
             cli::usage_error("--frames and --shard pick scene files to render; --trace renders nothing");
-        if (!trace && (camera_given || !request.json_path.empty()))
-            cli::usage_error("--camera and --trace-json need --trace");
+        if (!trace && (camera_given || sample_given || !request.json_path.empty()))
+            cli::usage_error("--camera, --sample and --trace-json need --trace");
         if (trace && o.repeat != 1) cli::usage_error("--repeat times renders; --trace renders nothing");
         for (const auto& [flag, out] : {std::pair{"--stats", &stats_path}, {"--trace-json", &request.json_path}})
             if (!out->empty() && is_scene_file(*out))

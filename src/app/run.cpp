@@ -164,6 +164,26 @@ std::string seconds_text(const Timing& t, int repeat) {
     return buf;
 }
 
+// The summary line's rays: how many the render traced and how fast (of the median run),
+// and the samples per pixel of a camera that takes several.
+std::string rays_text(const Camera& cam, const ImageRecord& r) {
+    const auto metric = [](double v) {
+        char buf[32];
+        if (v >= 1e9)
+            std::snprintf(buf, sizeof buf, "%.2fG", v / 1e9);
+        else if (v >= 1e6)
+            std::snprintf(buf, sizeof buf, "%.2fM", v / 1e6);
+        else if (v >= 1e3)
+            std::snprintf(buf, sizeof buf, "%.1fk", v / 1e3);
+        else
+            std::snprintf(buf, sizeof buf, "%.0f", v);
+        return std::string(buf);
+    };
+    const double rays = double(r.render_stats.rays.total());
+    return (cam.samples > 0 ? std::to_string(cam.samples) + " samples/pixel, " : std::string()) + metric(rays) +
+           " rays, " + metric(r.render.median > 0 ? rays / r.render.median : 0) + " rays/s";
+}
+
 // Renders camera `c` (0-based) of a loaded scene --repeat times and writes it once;
 // returns its record. Throws on failure (InputError for an unwritable path).
 ImageRecord render_camera(const std::string& scene_path, const LoadedScene& s, size_t c, const std::string& out,
@@ -195,11 +215,11 @@ ImageRecord render_camera(const std::string& scene_path, const LoadedScene& s, s
         const std::string warned = s.warnings == 0 ? "" : ", " + count_of(s.warnings, "warning");
         const std::string runs =
             o.repeat <= 1 ? "" : "median (fastest..slowest) of " + std::to_string(o.repeat) + " runs: ";
-        std::fprintf(stderr, "%s: %dx%d, %s, %s, %sload %s, bvh %s, render %s, write %.3fs%s%s\n", out.c_str(),
+        std::fprintf(stderr, "%s: %dx%d, %s, %s, %sload %s, bvh %s, render %s (%s), write %.3fs%s%s\n", out.c_str(),
                      cam.width, cam.height, kPrecisionName, bvh_counts(s.figures).c_str(), runs.c_str(),
                      seconds_text(s.load, o.repeat).c_str(), seconds_text(s.figures.seconds.bvh, o.repeat).c_str(),
-                     seconds_text(r.render, o.repeat).c_str(), r.write.median, o.repeat <= 1 ? "" : " (written once)",
-                     warned.c_str());
+                     seconds_text(r.render, o.repeat).c_str(), rays_text(cam, r).c_str(), r.write.median,
+                     o.repeat <= 1 ? "" : " (written once)", warned.c_str());
     }
     r.peak_rss = app::peak_rss_bytes();
     return r;
@@ -294,7 +314,13 @@ int run_trace(const std::string& scene_path, const RunOptions& o, const PixelTra
                          std::to_string(cam.width) + "x" + std::to_string(cam.height) + " image of camera " +
                          std::to_string(req.camera) + " (x 0.." + std::to_string(cam.width - 1) + ", y 0.." +
                          std::to_string(cam.height - 1) + ")");
-    PixelTrace t = trace_pixel(s->scene, req.camera - 1, req.x, req.y, o.render.trace, o.render.rounding);
+    const int samples = std::max(1, cam.samples);
+    if (req.sample >= samples)
+        throw UsageError("--sample " + std::to_string(req.sample) + ": camera " + std::to_string(req.camera) +
+                         " takes " + count_of(size_t(samples), "sample") + " per pixel (0.." +
+                         std::to_string(samples - 1) + ")");
+    PixelTrace t = trace_pixel(s->scene, req.camera - 1, req.x, req.y, o.render.trace, o.render.rounding, o.render.seed,
+                               req.sample);
     t.scene = scene_path;
     std::fputs(trace_text(s->scene, t).c_str(), stdout);
     if (req.json_path.empty()) return 0;

@@ -17,6 +17,9 @@ Camera make_camera(const CameraDesc& d) {
     c.width = d.width;
     c.height = d.height;
     c.image_name = d.image_name;
+    c.samples = d.num_samples;
+    c.aperture = d.aperture_size;
+    c.focus_distance = d.focus_distance;
     return c;
 }
 

@@ -17,13 +17,15 @@ Box Instance::bounds() const {
         lo = vmin(lo, p);
         hi = vmax(hi, p);
     }
-    return Box::around(lo, hi);
+    return is_still(motion) ? Box::around(lo, hi) : swept(Box::around(lo, hi), motion);
 }
 
 bool Instance::trace(const Ray& ray, Real tmin, Real tmax, bool cull, bool shadow, Real& t, Real w[3],
                      uint32_t& part) const {
     // Not renormalised: a point at t along the object ray is the point at t along `ray`.
-    const Ray object{to_object.point(ray.org), to_object.vector(ray.dir)};
+    // A moving instance is where its motion has taken it at the ray's time.
+    const Vec3 org = is_still(motion) ? ray.org : ray.org - motion * ray.time;
+    const Ray object{to_object.point(org), to_object.vector(ray.dir)};
     if (shadow) {
         if (!any_hit(*mesh, object, tmin, tmax)) return false;
         t = tmin;  // shadow rays ask only whether something is there

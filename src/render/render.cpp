@@ -20,6 +20,8 @@ namespace rt {
 void apply_overrides(Scene& scene, const RenderOptions& options) {
     if (options.max_depth >= 0) scene.setup.max_recursion_depth = options.max_depth;
     scene.setup.shadow_ray_epsilon = static_cast<Real>(scene.setup.shadow_ray_epsilon * options.epsilon_scale);
+    if (options.samples > 0)
+        for (Camera& c : scene.setup.cameras) c.samples = options.samples;
 }
 
 Image render(const Scene& scene, size_t camera_index, const RenderOptions& options, RenderStats* stats) {
@@ -41,6 +43,7 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
     const int tiles = all_tiles > part ? (all_tiles - part + parts - 1) / parts : 0;
     std::atomic<int> next{0};
     const TraceOptions& topt = options.trace;
+    const PixelSampling sampling = pixel_sampling(scene, camera_index, options.seed);
     const bool watch = static_cast<bool>(options.progress);
 
     int threads = options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency());
@@ -62,23 +65,39 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
             // Neighbouring pixels' camera rays traverse the tree as one packet of
             // kPacketW x kPacketH pixels.
             uint8_t pixels[kTile][kTile * 3];
-            for (int y = y0; y < y1; y += kPacketH)
-                for (int x = x0; x < x1; x += kPacketW) {
-                    Ray rays_in[kPacket];
-                    int n = 0;
-                    for (int py = y; py < std::min(y + kPacketH, y1); ++py)
-                        for (int px = x; px < std::min(x + kPacketW, x1); ++px) rays_in[n++] = cam.primary_ray(px, py);
-                    Vec3 c[kPacket];
-                    trace_primaries(scene, rays_in, n, topt, &cache, c);
-                    n = 0;
-                    for (int py = y; py < std::min(y + kPacketH, y1); ++py)
-                        for (int px = x; px < std::min(x + kPacketW, x1); ++px, ++n) {
-                            uint8_t* rgb = &pixels[py - y0][(px - x0) * 3];
-                            rgb[0] = quantize(c[n].x, options.rounding);
-                            rgb[1] = quantize(c[n].y, options.rounding);
-                            rgb[2] = quantize(c[n].z, options.rounding);
-                        }
-                }
+            if (sampling.samples > 0) {
+                // Distribution ray tracing: each pixel's samples (pixel_samples.h).
+                for (int y = y0; y < y1; ++y)
+                    for (int x = x0; x < x1; ++x) {
+                        const Vec3 c = sample_pixel(scene, cam, sampling, x, y, topt, &cache);
+                        uint8_t* rgb = &pixels[y - y0][(x - x0) * 3];
+                        rgb[0] = quantize(c.x, options.rounding);
+                        rgb[1] = quantize(c.y, options.rounding);
+                        rgb[2] = quantize(c.z, options.rounding);
+                    }
+            } else
+                for (int y = y0; y < y1; y += kPacketH)
+                    for (int x = x0; x < x1; x += kPacketW) {
+                        Ray rays_in[kPacket];
+                        SampleStream streams[kPacket];
+                        int n = 0;
+                        for (int py = y; py < std::min(y + kPacketH, y1); ++py)
+                            for (int px = x; px < std::min(x + kPacketW, x1); ++px, ++n) {
+                                const CameraSample cs = camera_sample(cam, sampling, px, py, 0);
+                                rays_in[n] = cs.ray;
+                                streams[n] = cs.stream;
+                            }
+                        Vec3 c[kPacket];
+                        trace_primaries(scene, rays_in, n, topt, &cache, streams, c);
+                        n = 0;
+                        for (int py = y; py < std::min(y + kPacketH, y1); ++py)
+                            for (int px = x; px < std::min(x + kPacketW, x1); ++px, ++n) {
+                                uint8_t* rgb = &pixels[py - y0][(px - x0) * 3];
+                                rgb[0] = quantize(c[n].x, options.rounding);
+                                rgb[1] = quantize(c[n].y, options.rounding);
+                                rgb[2] = quantize(c[n].z, options.rounding);
+                            }
+                    }
             // The tile goes to the image a row at a time: a tile row (48 bytes) shares
             // cache lines with its neighbours', which the other workers render at the
             // same time.

@@ -238,8 +238,10 @@ Scene build(SceneDesc& d, const BvhBuildOptions& bvh, MeshCache* cache) {
     setup.shadow_ray_epsilon = d.shadow_ray_epsilon;
     setup.max_recursion_depth = d.max_recursion_depth;
     for (const CameraDesc& c : d.cameras) setup.cameras.push_back(make_camera(c));
-    setup.lights.reserve(d.point_lights.size());
-    for (const PointLightDesc& l : d.point_lights) setup.lights.push_back({l.position, l.intensity});
+    setup.lights.reserve(d.point_lights.size() + d.area_lights.size());
+    for (const PointLightDesc& l : d.point_lights) setup.lights.push_back(Light::point(l.position, l.intensity));
+    for (const AreaLightDesc& l : d.area_lights)
+        setup.lights.push_back(Light::square(l.position, l.normal, l.size, l.radiance));
     setup.materials.reserve(d.materials.size());
     for (const MaterialDesc& m : d.materials) setup.materials.push_back(make_material(m));
 
@@ -258,6 +260,7 @@ Scene build(SceneDesc& d, const BvhBuildOptions& bvh, MeshCache* cache) {
         own.path = d.path;
         own.meshes.push_back(std::move(m));
         own.meshes[0].transform = Affine{};
+        own.meshes[0].motion = Vec3{};
         own.meshes[0].instanced = false;
         own.meshes[0].content_key.clear();
         const auto make = [&own, &bvh] { return build(own, bvh, nullptr); };
@@ -297,6 +300,7 @@ Scene build(SceneDesc& d, const BvhBuildOptions& bvh, MeshCache* cache) {
         g.all<S>().reserve(n);
         s.names.ids[size_t(kind_of<S>)].reserve(n);
         for (const typename S::Desc& e : descs) {
+            if (!is_still(e.motion)) g.moves = true;
             g.all<S>().push_back(S::build(e, inputs));
             s.names.ids[size_t(kind_of<S>)].push_back(e.id, e.key);
         }

@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "rt/bvh/intersect.h"
+#include "rt/core/random.h"
 #include "rt/geometry/scene.h"
 #include "rt/geometry/traverse.h"
 #include "rt/materials/materials.h"
@@ -62,8 +63,9 @@ struct Integrator {
     // (TraceCache), whichever point's ray found it. `rec`: the recorded tree's node
     // when n is 1, or null (renders). N: the capacity of the arrays, kPacket or 1 (a
     // secondary ray's point writes no packet's worth of them).
+    // streams[i]: point i's sample's random numbers (area lights draw from them).
     template <int N>
-    void local(const HitPoint* pts, const Ray* incoming, int n, Vec3* out, RayTrace* rec) const {
+    void local(const HitPoint* pts, const Ray* incoming, int n, Vec3* out, RayTrace* rec, SampleStream* streams) const {
         const SceneSetup& setup = s.setup;
         for (int i = 0; i < n; ++i)
             if (pts[i].lit) out[i] = setup.materials[pts[i].surf.material].ambient * setup.ambient_light;
@@ -74,7 +76,7 @@ struct Integrator {
             int n_queries = 0;
             for (int i = 0; i < n; ++i)
                 if (pts[i].lit)
-                    light_term(terms[i], li, pts[i].p, pts[i].surf.ns, queries, n_queries,
+                    light_term(terms[i], li, pts[i].p, pts[i].surf.ns, incoming[i].time, streams[i], queries, n_queries,
                                rec ? &rec->lights.emplace_back() : nullptr);
             bool blocked[N];
             any_hits(s, queries, n_queries, blocked);
@@ -100,6 +102,7 @@ struct Integrator {
     // A light seen from a shaded point: what local() needs of it.
     struct LightTerm {
         size_t light = 0;  // index in SceneSetup::lights
+        Vec3 scale;        // the irradiance times d^2 (LightSample)
         Vec3 l;            // unit vector to the light
         Real d2 = 0;       // squared distance
         Real ndotl = 0;
@@ -112,12 +115,19 @@ struct Integrator {
     // recorded tree's entry, or null. The term is written in place, field by field: a
     // returned one copied into the caller's array is one wide load over narrower stores,
     // which waits for them to reach the cache.
-    void light_term(LightTerm& term, size_t li, Vec3 p, Vec3 n, ShadowQuery* queries, int& n_queries,
-                    LightTrace* lt) const {
+    void light_term(LightTerm& term, size_t li, Vec3 p, Vec3 n, Real time, SampleStream& stream, ShadowQuery* queries,
+                    int& n_queries, LightTrace* lt) const {
         const SceneSetup& setup = s.setup;
-        const PointLight& light = setup.lights[li];
-        const Vec3 to_light = light.position - p;
+        const Light& source = setup.lights[li];
+        Real xi1 = 0, xi2 = 0;
+        if (source.sampled()) {
+            xi1 = stream.next();
+            xi2 = stream.next();
+        }
+        const LightSample light = sample_light(source, p, xi1, xi2);
+        const Vec3 to_light = light.from - p;
         term.light = li;
+        term.scale = light.scale;
         term.facing = false;
         term.query = -1;
         term.d2 = dot(to_light, to_light);
@@ -126,6 +136,8 @@ struct Integrator {
         term.ndotl = dot(n, term.l);
         if (lt) {
             lt->light = li;
+            lt->from = light.from;
+            lt->scale = light.scale;
             lt->ndotl = term.ndotl;
         }
         // Nothing to add: diffuse is max(0, n.l) and the specular term is
@@ -133,7 +145,7 @@ struct Integrator {
         // within the rounding error of p counts as 0: a light lying in the
         // surface's plane would otherwise switch the specular term on and off
         // from pixel to pixel (its irradiance is huge that close).
-        const Real noise = 8 * std::numeric_limits<Real>::epsilon() * (max_abs(p) + max_abs(light.position)) / d;
+        const Real noise = 8 * std::numeric_limits<Real>::epsilon() * (max_abs(p) + max_abs(light.from)) / d;
         if (!(term.ndotl > noise)) return;
         term.facing = true;
         if (lt) lt->facing = true;
@@ -146,11 +158,11 @@ struct Integrator {
         // tower_smooth goes from 16 to 461 pixels off).
         const Real eps = setup.shadow_ray_epsilon;
         const Vec3 so = p + n * eps;
-        const Vec3 so_to_light = light.position - so;
+        const Vec3 so_to_light = light.from - so;
         const Real dist = length(so_to_light);
         if (!(dist > 2 * eps)) return;  // a light within 2 eps of the point is never occluded
         ++rays.shadow;
-        const Ray shadow{so, so_to_light / dist};
+        const Ray shadow{so, so_to_light / dist, time};
         if (lt) {
             lt->shadow_traced = true;
             lt->shadow = shadow;
@@ -162,7 +174,7 @@ struct Integrator {
 
     // Diffuse and specular of an unshadowed light that faces the point (spec 2.8).
     Vec3 light_added(const Material& m, const LightTerm& term, Vec3 n, Vec3 to_eye, LightTrace* lt) const {
-        const Vec3 e = s.setup.lights[term.light].intensity / term.d2;  // irradiance E = I / d^2 (spec 2.8)
+        const Vec3 e = term.scale / term.d2;  // irradiance E = I / d^2 (spec 2.8; area lights: LightSample)
         const Vec3 h = normalize(term.l + to_eye);
         const Real ndoth = max_num(Real(0), dot(n, h));
         const Real lobe = phong_pow(ndoth, m.phong_exponent);
@@ -207,13 +219,14 @@ struct Integrator {
     // ray's node of the recorded tree (its kind, factor and weight set), or null (renders).
     // trace() and bounce() are inlined into their callers, so that a secondary ray costs
     // one call (shade()) as before they were split out (docs/performance.md).
-    [[gnu::always_inline]] Vec3 trace(const Ray& ray, int depth, int medium, bool primary, Real weight,
-                                      RayTrace* rec) const {
+    // `stream`: the random numbers of the path's sample (area lights, rough surfaces).
+    [[gnu::always_inline]] Vec3 trace(const Ray& ray, int depth, int medium, bool primary, Real weight, RayTrace* rec,
+                                      SampleStream& stream) const {
         Hit h;
         const bool cull = cull_of(medium);
         const bool hit = closest_hit(s, ray, 0, HUGE_VAL, cull, h);
         if (rec) record_ray(*rec, ray, depth, medium, cull, hit, h);
-        return hit ? shade(ray, h, depth, medium, weight, rec) : missed(primary, rec);
+        return hit ? shade(ray, h, depth, medium, weight, rec, stream) : missed(primary, rec);
     }
 
     // The radiance of a ray that hits nothing.
@@ -224,17 +237,18 @@ struct Integrator {
     }
 
     // The radiance of a ray (as trace()) that hits h.
-    Vec3 shade(const Ray& ray, const Hit& h, int depth, int medium, Real weight, RayTrace* rec) const {
+    Vec3 shade(const Ray& ray, const Hit& h, int depth, int medium, Real weight, RayTrace* rec,
+               SampleStream& stream) const {
         const HitPoint hp = hit_point(ray, h, rec);
         Vec3 color;
-        if (hp.lit) local<1>(&hp, &ray, 1, &color, rec);
-        return bounce(ray, h, hp, color, depth, medium, weight, rec);
+        if (hp.lit) local<1>(&hp, &ray, 1, &color, rec, &stream);
+        return bounce(ray, h, hp, color, depth, medium, weight, rec, stream);
     }
 
     // The rest of shade() once the lights' share `color` at the hit point is known:
     // the secondary rays and Beer's law.
     [[gnu::always_inline]] Vec3 bounce(const Ray& ray, const Hit& h, const HitPoint& hp, Vec3 color, int depth,
-                                       int medium, Real weight, RayTrace* rec) const {
+                                       int medium, Real weight, RayTrace* rec, SampleStream& stream) const {
         const uint32_t mat_id = hp.surf.material;
         const Material& m = s.setup.materials[mat_id];
 
@@ -266,7 +280,16 @@ struct Integrator {
             // 50 stay bounded, while a skipped ray changes a pixel by less than min_weight
             // times its radiance.
             for (int i = 0; i < out.n; ++i) {
-                const ScatterOut::Secondary& r = out.rays[i];
+                ScatterOut::Secondary& r = out.rays[i];
+                // Every secondary ray at the incoming ray's time; a rough surface's
+                // turned (Roughness), drawing from the path's stream even when pruned
+                // below, so that the draws do not depend on the weights.
+                r.ray.time = ray.time;
+                const Vec3 ideal = r.ray.dir;
+                if (m.roughness > 0) {
+                    const Real xi1 = stream.next(), xi2 = stream.next();
+                    r.ray.dir = perturb_direction(ideal, m.roughness, xi1, xi2);
+                }
                 const Real w = weight * max_component(beer) * max_component(r.factor);
                 const Real min_weight = static_cast<Real>(opt.min_weight);
                 RayTrace* child = nullptr;
@@ -276,12 +299,14 @@ struct Integrator {
                     child->depth = depth + 1;
                     child->ray = r.ray;
                     child->factor = r.factor;
+                    child->perturbed = m.roughness > 0;
+                    child->ideal = ideal;
                     child->weight = w;
                     child->pruned = !(w >= min_weight);
                 }
                 if (!(w >= min_weight)) continue;
                 ++(r.kind == RayKind::Refraction ? rays.refraction : rays.reflection);
-                color += r.factor * trace(r.ray, depth + 1, r.medium, false, w, child);
+                color += r.factor * trace(r.ray, depth + 1, r.medium, false, w, child, stream);
             }
         }
         if (medium != kNoMedium) color = color * beer;
@@ -319,8 +344,8 @@ Integrator camera_integrator(const Scene& scene, const TraceOptions& options, Tr
 }
 }  // namespace
 
-Vec3 trace_primary(const Scene& scene, const Ray& ray, const TraceOptions& options, TraceCache* cache,
-                   RayTrace* record) {
+Vec3 trace_primary(const Scene& scene, const Ray& ray, const TraceOptions& options, TraceCache* cache, RayTrace* record,
+                   SampleStream* stream) {
     RayCounts unused;
     const Integrator it = camera_integrator(scene, options, cache, unused);
     ++it.rays.camera;
@@ -328,11 +353,12 @@ Vec3 trace_primary(const Scene& scene, const Ray& ray, const TraceOptions& optio
         record->kind = RayKind::Camera;
         record->weight = 1;
     }
-    return it.trace(ray, 0, kNoMedium, true, 1, record);
+    SampleStream fallback(0, 0, 0);
+    return it.trace(ray, 0, kNoMedium, true, 1, record, stream ? *stream : fallback);
 }
 
 void trace_primaries(const Scene& scene, const Ray* rays, int n, const TraceOptions& options, TraceCache* cache,
-                     Vec3* radiance) {
+                     SampleStream* streams, Vec3* radiance) {
     RayCounts unused;
     const Integrator it = camera_integrator(scene, options, cache, unused);
     it.rays.camera += static_cast<uint64_t>(n);
@@ -346,9 +372,9 @@ void trace_primaries(const Scene& scene, const Ray* rays, int n, const TraceOpti
     for (int i = 0; i < n; ++i)
         if (found[i]) pts[i] = it.hit_point(rays[i], hits[i], nullptr);
     Vec3 colors[kPacket];
-    it.local<kPacket>(pts, rays, n, colors, nullptr);
+    it.local<kPacket>(pts, rays, n, colors, nullptr, streams);
     for (int i = 0; i < n; ++i)
-        radiance[i] = found[i] ? it.bounce(rays[i], hits[i], pts[i], colors[i], 0, kNoMedium, 1, nullptr)
+        radiance[i] = found[i] ? it.bounce(rays[i], hits[i], pts[i], colors[i], 0, kNoMedium, 1, nullptr, streams[i])
                                : it.missed(true, nullptr);
 }
 

@@ -1,6 +1,8 @@
 // One pixel's ray tree, recorded by the integrator itself (rt/shading/trace.h).
 #include "rt/shading/trace.h"
 
+#include "rt/shading/pixel_samples.h"
+
 namespace rt {
 
 const char* ray_kind_name(RayKind kind) {
@@ -17,23 +19,36 @@ const char* ray_kind_name(RayKind kind) {
     return "?";
 }
 
-PixelTrace trace_pixel(const Scene& scene, size_t camera, int x, int y, const TraceOptions& options,
-                       Rounding rounding) {
+PixelTrace trace_pixel(const Scene& scene, size_t camera, int x, int y, const TraceOptions& options, Rounding rounding,
+                       uint64_t seed, int sample) {
     PixelTrace t;
     t.camera = camera;
     t.x = x;
     t.y = y;
     t.rounding = rounding;
     t.min_weight = options.min_weight;
-    // The render's own computation (render.cpp): the camera's primary ray, its radiance
+    // The render's own computation (render.cpp): the sample's camera ray, its radiance
     // (trace_primary, which the render's packets, trace_primaries, equal) and quantize;
-    // a fresh cache, whose hints never change a result.
+    // with samples, the pixel's mean (sample_pixel). A fresh cache, whose hints never
+    // change a result.
     TraceCache cache;
-    const Vec3 c = trace_primary(scene, scene.setup.cameras.at(camera).primary_ray(x, y), options, &cache, &t.root);
+    const Camera& cam = scene.setup.cameras.at(camera);
+    const PixelSampling sampling = pixel_sampling(scene, camera, seed);
+    CameraSample cs = camera_sample(cam, sampling, x, y, sample);
+    t.samples = sampling.samples;
+    t.sample = sample;
+    t.seed = seed;
+    t.dx = cs.dx;
+    t.dy = cs.dy;
+    t.lx = cs.lx;
+    t.ly = cs.ly;
+    t.lens = cam.aperture > 0;
+    const Vec3 c = trace_primary(scene, cs.ray, options, &cache, &t.root, &cs.stream);
     t.clamped = {clamp_channel(c.x), clamp_channel(c.y), clamp_channel(c.z)};
-    t.pixel[0] = quantize(c.x, rounding);
-    t.pixel[1] = quantize(c.y, rounding);
-    t.pixel[2] = quantize(c.z, rounding);
+    t.mean = sampling.samples > 0 ? sample_pixel(scene, cam, sampling, x, y, options, &cache) : c;
+    t.pixel[0] = quantize(t.mean.x, rounding);
+    t.pixel[1] = quantize(t.mean.y, rounding);
+    t.pixel[2] = quantize(t.mean.z, rounding);
     return t;
 }
 

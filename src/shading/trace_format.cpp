@@ -96,8 +96,9 @@ public:
         }
         line(indent, head);
         const int in = indent + 1;
-        line(in, "origin " + vec(r.ray.org));
+        line(in, "origin " + vec(r.ray.org) + (scene_.geometry.moves ? ", time " + num(r.ray.time) : ""));
         line(in, "direction " + vec(r.ray.dir));
+        if (r.perturbed) line(in + 1, "rough surface (Roughness): turned from the ideal direction " + vec(r.ideal));
         std::string search = "t in (" + num(r.tmin) + ", " + num(r.tmax) + ")";
         search += r.cull ? ", back faces culled" : ", no culling";
         if (r.medium >= 0) search += ", inside material " + material_id(scene_, size_t(r.medium));
@@ -165,7 +166,10 @@ public:
     }
 
     void light(const LightTrace& l, int indent) {
-        std::string s = light_name(l.light) + ": n.l = " + num(l.ndotl);
+        std::string s = light_name(l.light);
+        if (scene_.setup.lights[l.light].kind == LightKind::Area)
+            s += " (area): point drawn " + vec(l.from) + ", L A |cos| " + vec(l.scale);
+        s += ": n.l = " + num(l.ndotl);
         if (!l.facing) {
             line(indent, s + ", faces away");
             return;
@@ -257,7 +261,10 @@ std::string jshape(const Scene& scene, ShapeRef s, Real t) {
 
 std::string jlight(const Scene& scene, const LightTrace& l) {
     Object o;
-    o.field("light", std::to_string(l.light + 1)).field("n_dot_l", jnum(l.ndotl)).field("facing", jbool(l.facing));
+    o.field("light", std::to_string(l.light + 1));
+    if (scene.setup.lights[l.light].kind == LightKind::Area)
+        o.field("area_point", jvec(l.from)).field("area_scale", jvec(l.scale));
+    o.field("n_dot_l", jnum(l.ndotl)).field("facing", jbool(l.facing));
     if (!l.facing) return o.done();
     o.field("shadow_ray", l.shadow_traced ? jshadow_ray(l.shadow, l.shadow_tmax) : "null");
     o.field("shadowed", jbool(l.shadowed));
@@ -277,7 +284,8 @@ std::string jnode(const Scene& scene, const RayTrace& r) {
     o.field("kind", jstr(ray_kind_name(r.kind))).field("depth", std::to_string(r.depth));
     o.field("factor", jvec(r.factor)).field("weight", jnum(r.weight)).field("traced", jbool(!r.pruned));
     if (r.pruned) return o.done();
-    o.field("origin", jvec(r.ray.org)).field("direction", jvec(r.ray.dir));
+    o.field("origin", jvec(r.ray.org)).field("direction", jvec(r.ray.dir)).field("time", jnum(r.ray.time));
+    o.field("ideal_direction", r.perturbed ? jvec(r.ideal) : "null");
     o.field("tmin", jnum(r.tmin)).field("tmax", jnum(r.tmax)).field("cull", jbool(r.cull));
     o.field("inside_material", r.medium >= 0 ? jstr(material_id(scene, size_t(r.medium))) : "null");
     o.field("culled", r.culled ? jshape(scene, r.culled_shape, r.culled_t) : "null");
@@ -348,9 +356,20 @@ std::string trace_text(const Scene& scene, const PixelTrace& t) {
                   std::to_string(cam.height) + ", " + kPrecisionName + "), MaxRecursionDepth " +
                   std::to_string(scene.setup.max_recursion_depth) + ", ShadowRayEpsilon " +
                   num(scene.setup.shadow_ray_epsilon));
+    if (t.samples > 0) {
+        w.line(0, "sample " + std::to_string(t.sample) + " of " + std::to_string(t.samples) + " (--sample, seed " +
+                      std::to_string(t.seed) + "): at (" + num(t.dx) + ", " + num(t.dy) +
+                      ") in the pixel from its top-left corner" +
+                      (t.lens ? ", lens point (" + num(t.lx) + ", " + num(t.ly) + ") of the aperture" : "") +
+                      (scene.geometry.moves ? ", time " + num(t.root.ray.time) : ""));
+    }
     w.ray(t.root, 0, false);
+    if (t.samples > 0)
+        w.line(0, "this sample: " + vec(t.clamped) + " clamped, " + vec(t.root.radiance) + " before clamping");
     w.line(0, "pixel [" + pixel_text(t.pixel) + "] after rounding (" + rounding_name(t.rounding) + "), from " +
-                  vec(t.clamped) + " clamped, " + vec(t.root.radiance) + " before clamping");
+                  (t.samples > 0 ? "the mean of its " + std::to_string(t.samples) + " samples " + vec(t.mean) +
+                                       " (clamped after averaging)"
+                                 : vec(t.clamped) + " clamped, " + vec(t.root.radiance) + " before clamping"));
     return w.take();
 }
 
@@ -372,6 +391,17 @@ std::string trace_json(const Scene& scene, const PixelTrace& t) {
                .field("pixel", "[" + pixel_text(t.pixel) + "]")
                .field("radiance", jvec(t.root.radiance))
                .field("clamped", jvec(t.clamped))
+               .field("samples", std::to_string(t.samples))
+               .field("sample", t.samples > 0
+                                    ? Object()
+                                          .field("index", std::to_string(t.sample))
+                                          .field("seed", std::to_string(t.seed))
+                                          .field("pixel_offset", "[" + jnum(t.dx) + ", " + jnum(t.dy) + "]")
+                                          .field("lens", t.lens ? "[" + jnum(t.lx) + ", " + jnum(t.ly) + "]" : "null")
+                                          .field("time", jnum(t.root.ray.time))
+                                          .field("mean", jvec(t.mean))
+                                          .done()
+                                    : "null")
                .field("ray", jnode(scene, t.root))
                .done() +
            "\n";

@@ -123,7 +123,8 @@ std::string trace(int camera, int x, int y) {
                                                 " is outside the " + std::to_string(c.width) + "x" +
                                                 std::to_string(c.height) + " image"}}
                 .dump();
-        PixelTrace t = trace_pixel(*s.scene, static_cast<size_t>(camera), x, y, s.render.trace, s.render.rounding);
+        PixelTrace t =
+            trace_pixel(*s.scene, static_cast<size_t>(camera), x, y, s.render.trace, s.render.rounding, s.render.seed);
         t.scene = s.path;
         return trace_json(*s.scene, t);
     } catch (const std::exception& e) {

@@ -11,7 +11,7 @@ from bench_scenes import mesh_files
 OURS_LINE = re.compile(
     r"^(?P<image>.*): (?P<w>\d+)x(?P<h>\d+), (?P<precision>double|float), (?P<tris>\d+) triangles?, "
     r"(?P<spheres>\d+) spheres?, (?:\d+ instances?, )?"
-    r"load (?P<load>[\d.eE+-]+)s, bvh (?P<bvh>[\d.eE+-]+)s, render (?P<render>[\d.eE+-]+)s, "
+    r"load (?P<load>[\d.eE+-]+)s, bvh (?P<bvh>[\d.eE+-]+)s, render (?P<render>[\d.eE+-]+)s(?: \([^)]*\))?, "
     r"write (?P<write>[\d.eE+-]+)s(, \d+ warnings?)?\s*$")
 
 

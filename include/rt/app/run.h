@@ -109,6 +109,7 @@ std::vector<std::string> select_frames(const std::vector<std::string>& files, co
 struct PixelTraceRequest {
     int x = 0, y = 0;       // column from the left, row from the top (>= 0)
     size_t camera = 1;      // 1-based
+    int sample = 0;         // with samples: which one to trace (0-based)
     std::string json_path;  // "": no JSON
 };
 

@@ -69,7 +69,8 @@ inline bool isfinite(Vec3 a) { return std::isfinite(a.x) && std::isfinite(a.y) &
 
 struct Ray {
     Vec3 org;
-    Vec3 dir;  // unit length for every ray the renderer spawns
+    Vec3 dir;       // unit length for every ray the renderer spawns
+    Real time = 0;  // in the shutter interval [0, 1): where moving shapes are (MotionBlur)
 };
 
 }  // namespace rt

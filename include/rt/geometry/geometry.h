@@ -67,6 +67,7 @@ struct Hit {
 };
 
 struct Geometry {
+    bool moves = false;  // some shape has a MotionBlur: rays carry a time (rt/core/math.h, Ray)
     std::vector<Vec3> positions;
     std::vector<Vec3> vertex_normals;  // area-weighted, per mesh; unit length or zero
     UninitVector<Triangle> triangles;

@@ -20,15 +20,11 @@
 #include "rt/core/uninit_vector.h"
 #include "rt/geometry/geometry.h"
 #include "rt/geometry/leaf_vertices.h"
+#include "rt/geometry/light.h"
 #include "rt/geometry/shape_names.h"
 #include "rt/materials/material.h"
 
 namespace rt {
-
-// A point light (spec 3, "PointLight"), as the integrator shades with it.
-struct PointLight {
-    Vec3 position, intensity;
-};
 
 // What the scene file says, apart from its shapes.
 struct SceneSetup {
@@ -36,7 +32,7 @@ struct SceneSetup {
     Real shadow_ray_epsilon = Real(1e-3);
     int max_recursion_depth = 6;
     std::vector<Camera> cameras;
-    std::vector<PointLight> lights;
+    std::vector<Light> lights;  // point lights, then area lights, each in file order
     std::vector<Material> materials;
 };
 

@@ -7,12 +7,21 @@
 
 namespace rt {
 
+// NumSamples' and --samples' bound.
+constexpr int kMaxSamples = 1 << 20;
+
 struct CameraDesc {
     Vec3 position, gaze, up;                          // gaze is a direction (lookAt cameras: GazePoint - Position)
     Real left = -1, right = 1, bottom = -1, top = 1;  // near plane extents
     Real near_distance = 1;
     int width = 0, height = 0;
     std::string image_name;
+    // Distribution ray tracing (docs/conventions.md, "Assignment 3"). num_samples 0: the
+    // camera has no NumSamples and takes one ray through each pixel's centre; otherwise
+    // that many random samples per pixel, averaged. aperture_size 0: a pinhole; otherwise
+    // a thin lens, a square of that side about Position, focused at focus_distance.
+    int num_samples = 0;
+    Real aperture_size = 0, focus_distance = 0;
 };
 
 // The two camera types of the scene file (spec 3) as a CameraDesc: the loader reads and

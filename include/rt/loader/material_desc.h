@@ -30,7 +30,10 @@ struct MaterialDesc {
     Real refraction_index = 1;    // conductors and dielectrics
     Real absorption_index = 0;    // conductors: imaginary part k of the complex index
     Vec3 absorption_coefficient;  // dielectrics: Beer's law c, per unit distance
-    std::string id;               // its _id, for --trace
+    // Roughness: how far a mirror's, conductor's or dielectric's rays are perturbed (0:
+    // sharp; docs/conventions.md, "Roughness"); ignored for Plain materials.
+    Real roughness = 0;
+    std::string id;  // its _id, for --trace
 };
 
 // No _type: Blinn-Phong only. MirrorReflectance is read (and checked) but not used: the
@@ -38,32 +41,35 @@ struct MaterialDesc {
 struct PlainMaterialFormat {
     static constexpr const char* kName = "plain";
     static constexpr const char* kTypeWord = nullptr;
-    static constexpr const char* kKeys[] = {"MirrorReflectance"};
+    static constexpr const char* kKeys[] = {"MirrorReflectance", "Roughness"};
     template <class Reader>
     static void read(Reader& r, MaterialDesc& d) {
         d.mirror = r.color_or("MirrorReflectance", {1, 1, 1});
+        d.roughness = r.non_negative_or("Roughness", 0);
     }
 };
 
 struct MirrorMaterialFormat {
     static constexpr const char* kName = "mirror";
     static constexpr const char* kTypeWord = "mirror";
-    static constexpr const char* kKeys[] = {"MirrorReflectance"};
+    static constexpr const char* kKeys[] = {"MirrorReflectance", "Roughness"};
     template <class Reader>
     static void read(Reader& r, MaterialDesc& d) {
         d.mirror = r.color("MirrorReflectance");
+        d.roughness = r.non_negative_or("Roughness", 0);
     }
 };
 
 struct ConductorMaterialFormat {
     static constexpr const char* kName = "conductor";
     static constexpr const char* kTypeWord = "conductor";
-    static constexpr const char* kKeys[] = {"MirrorReflectance", "RefractionIndex", "AbsorptionIndex"};
+    static constexpr const char* kKeys[] = {"MirrorReflectance", "RefractionIndex", "AbsorptionIndex", "Roughness"};
     template <class Reader>
     static void read(Reader& r, MaterialDesc& d) {
         d.mirror = r.color("MirrorReflectance");
         d.refraction_index = r.positive("RefractionIndex");
         d.absorption_index = r.non_negative("AbsorptionIndex");
+        d.roughness = r.non_negative_or("Roughness", 0);
     }
 };
 
@@ -72,12 +78,14 @@ struct ConductorMaterialFormat {
 struct DielectricMaterialFormat {
     static constexpr const char* kName = "dielectric";
     static constexpr const char* kTypeWord = "dielectric";
-    static constexpr const char* kKeys[] = {"MirrorReflectance", "RefractionIndex", "AbsorptionCoefficient"};
+    static constexpr const char* kKeys[] = {"MirrorReflectance", "RefractionIndex", "AbsorptionCoefficient",
+                                            "Roughness"};
     template <class Reader>
     static void read(Reader& r, MaterialDesc& d) {
         d.mirror = r.color_or("MirrorReflectance", {1, 1, 1});
         d.refraction_index = r.positive("RefractionIndex");
         d.absorption_coefficient = r.color_or("AbsorptionCoefficient", {0, 0, 0});
+        d.roughness = r.non_negative_or("Roughness", 0);
     }
 };
 

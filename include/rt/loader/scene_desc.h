@@ -27,6 +27,14 @@ struct PointLightDesc {
     Vec3 position, intensity;
 };
 
+// Lights/AreaLight: a square emitter of side `size` about `position`, facing along
+// `normal` (unit length); `radiance` per unit area and solid angle (docs/conventions.md,
+// "Area lights").
+struct AreaLightDesc {
+    Vec3 position, normal, radiance;
+    Real size = 1;
+};
+
 enum class ShadingMode { Flat, Smooth };
 
 struct MeshDesc {
@@ -47,6 +55,8 @@ struct MeshDesc {
     std::string id;
     // Its Transformations: the positions above as written -> the world.
     Affine transform;
+    // MotionBlur: the world-space translation it makes over the shutter (zero: still).
+    Vec3 motion;
     // Drawn as an instance of itself (InstanceDesc), its positions kept as
     // written: shown by a MeshInstance, or moved by Transformations. Otherwise its
     // transform is the identity.
@@ -66,6 +76,7 @@ struct SceneDesc {
     Vec3 ambient_light;
     std::vector<CameraDesc> cameras;
     std::vector<PointLightDesc> point_lights;
+    std::vector<AreaLightDesc> area_lights;
     std::vector<MaterialDesc> materials;
     std::vector<MeshDesc> meshes;       // Objects/Triangle entries become one-triangle flat meshes
     ShapeDescVectors shapes;            // the other kinds (rt/loader/shape_descs.h): all<SphereDesc>(), ...

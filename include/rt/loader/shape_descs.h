@@ -23,19 +23,25 @@
 
 namespace rt {
 
+// Whether a MotionBlur translation leaves the shape where it is.
+inline bool is_still(Vec3 motion) { return motion.x == 0 && motion.y == 0 && motion.z == 0; }
+
 // The fields the loader reads for every kind: Material (a 1-based id in the file) and
 // _id, as written (its 1-based position among its kind when it has none).
 struct ShapeDescBase {
     uint32_t material = 0;  // into SceneDesc::materials
     std::string id;
     const char* key = nullptr;  // the entry's Objects/<key> when not its kind's (--trace)
+    // MotionBlur: the world-space translation it makes over the shutter, after its
+    // Transformations (zero: still; docs/conventions.md, "Motion blur").
+    Vec3 motion;
 };
 
 // Objects/Sphere: its Center a vertex id, its Radius > 0. Under Transformations it keeps
 // the matrix (a non-uniform scaling makes an exact ellipsoid: docs/transformations.md).
 struct SphereDesc : ShapeDescBase {
     static constexpr const char* kKey = "Sphere";
-    static constexpr const char* kKeys[] = {"_id", "Material", "Center", "Radius", "Transformations"};
+    static constexpr const char* kKeys[] = {"_id", "Material", "Center", "Radius", "Transformations", "MotionBlur"};
     static constexpr const char* kNoun = "sphere";
     static constexpr const char* kNouns = "spheres";
     static constexpr bool kReadAsShape = true;
@@ -59,7 +65,8 @@ struct SphereDesc : ShapeDescBase {
 // docs/transformations.md.
 struct InstanceDesc : ShapeDescBase {
     static constexpr const char* kKey = "MeshInstance";
-    static constexpr const char* kKeys[] = {"_id", "_baseMeshId", "_resetTransform", "Material", "Transformations"};
+    static constexpr const char* kKeys[] = {"_id",      "_baseMeshId",     "_resetTransform",
+                                            "Material", "Transformations", "MotionBlur"};
     static constexpr const char* kNoun = "instance";
     static constexpr const char* kNouns = "instances";
     // The loader reads Objects/MeshInstance with the meshes it refers to.

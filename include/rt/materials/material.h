@@ -33,6 +33,7 @@ struct Material {
     Real absorption_index = 0;    // conductors: imaginary part k of the complex index
     Vec3 absorption_coefficient;  // dielectrics: Beer's law c, per unit distance
     std::string id;               // its _id, for --trace
+    Real roughness = 0;           // how far its secondary rays are perturbed (perturb_direction)
 };
 
 inline Material make_material(const MaterialDesc& d) {
@@ -45,7 +46,8 @@ inline Material make_material(const MaterialDesc& d) {
             d.refraction_index,
             d.absorption_index,
             d.absorption_coefficient,
-            d.id};
+            d.id,
+            d.type == MaterialType::Plain ? Real(0) : d.roughness};
 }
 
 // The dielectric a ray travels inside: a material index, or none.

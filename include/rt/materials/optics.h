@@ -52,4 +52,17 @@ enum class RayKind { Camera, Reflection, Refraction, Shadow };
 // `offset_normal` (which the caller points to the side the ray leaves from).
 inline Ray spawn_ray(Vec3 p, Vec3 offset_normal, Real epsilon, Vec3 dir) { return {p + offset_normal * epsilon, dir}; }
 
+// A rough surface's secondary ray direction (Roughness; docs/conventions.md,
+// "Roughness"): the ideal direction r (unit length) moved by roughness * (xi - 1/2) along
+// each of two unit vectors orthogonal to it and to each other, and renormalised; xi1 and
+// xi2 uniform in [0, 1).
+inline Vec3 perturb_direction(Vec3 r, Real roughness, Real xi1, Real xi2) {
+    // The axis of r's smallest component is the farthest from r: a stable cross product.
+    const Real ax = std::fabs(r.x), ay = std::fabs(r.y), az = std::fabs(r.z);
+    const Vec3 axis = ax <= ay && ax <= az ? Vec3{1, 0, 0} : (ay <= az ? Vec3{0, 1, 0} : Vec3{0, 0, 1});
+    const Vec3 u = normalize(cross(r, axis));
+    const Vec3 v = cross(r, u);
+    return normalize(r + (u * (xi1 - Real(0.5)) + v * (xi2 - Real(0.5))) * roughness);
+}
+
 }  // namespace rt

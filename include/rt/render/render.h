@@ -4,6 +4,7 @@
 
 #include "rt/geometry/scene.h"
 #include "rt/image/image.h"
+#include "rt/shading/pixel_samples.h"
 #include "rt/shading/shading.h"
 
 namespace rt {
@@ -18,8 +19,10 @@ struct RenderOptions {
     int threads = 0;     // 0: all hardware threads
     TraceOptions trace;  // back-face culling (spec 2.9) and the minimum ray weight (rt/shading/shading.h)
     Rounding rounding = Rounding::Truncate;
-    int max_depth = -1;        // >= 0 (at most kMaxRecursionDepth): overrides the scene's MaxRecursionDepth
-    double epsilon_scale = 1;  // multiplies the scene's ShadowRayEpsilon
+    int max_depth = -1;            // >= 0 (at most kMaxRecursionDepth): overrides the scene's MaxRecursionDepth
+    double epsilon_scale = 1;      // multiplies the scene's ShadowRayEpsilon
+    int samples = 0;               // > 0: overrides every camera's NumSamples (--samples)
+    uint64_t seed = kDefaultSeed;  // the random numbers' seed (--seed; rt/core/random.h)
     // When set, called on the calling thread about every `progress_interval` seconds
     // while the image renders, with the tiles finished so far and the tile count (never
     // after the last tile: a render shorter than one interval makes no call). The
@@ -40,7 +43,7 @@ struct RenderStats {
     int tiles = 0;    // 16x16 tiles
 };
 
-// The overrides of `options` (max_depth, epsilon_scale) applied to a built scene; the
+// The overrides of `options` (max_depth, epsilon_scale, samples) applied to a built scene; the
 // command line and the page call it once per scene, before rendering or tracing it.
 void apply_overrides(Scene& scene, const RenderOptions& options);
 

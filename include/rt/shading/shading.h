@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "rt/core/math.h"
+#include "rt/core/random.h"
 #include "rt/materials/optics.h"
 
 namespace rt {
@@ -51,13 +52,16 @@ struct alignas(64) TraceCache {
 
 // Radiance (in 0..255 units, unclamped) arriving at the camera along a primary ray.
 // `record`, when given, receives the ray tree (rt/shading/trace.h); renders pass none.
+// `stream`: the path's random numbers (rt/core/random.h: area lights and rough surfaces
+// draw from it), or null for the stream of sample 0 of pixel 0 under seed 0.
 Vec3 trace_primary(const Scene& scene, const Ray& ray, const TraceOptions& options, TraceCache* cache = nullptr,
-                   RayTrace* record = nullptr);
+                   RayTrace* record = nullptr, SampleStream* stream = nullptr);
 // trace_primary for n primary rays at once (1 <= n <= kPacket): the same radiance
 // in radiance[0 .. n), their closest hits found by one packet traversal (closest_hits),
 // and their points' shadow rays towards each light by another (any_hits).
+// streams[i]: ray i's path's random numbers.
 void trace_primaries(const Scene& scene, const Ray* rays, int n, const TraceOptions& options, TraceCache* cache,
-                     Vec3* radiance);
+                     SampleStream* streams, Vec3* radiance);
 
 // x^e for the Blinn-Phong lobe: whole exponents up to 1024 by repeated squaring
 // (exact to a few ulps, several times faster than std::pow), others by std::pow.

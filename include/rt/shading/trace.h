@@ -11,6 +11,7 @@
 #include "rt/core/math.h"
 #include "rt/geometry/scene.h"
 #include "rt/image/image.h"
+#include "rt/shading/pixel_samples.h"
 #include "rt/shading/shading.h"
 
 namespace rt {
@@ -20,6 +21,8 @@ const char* ray_kind_name(RayKind kind);  // "camera", "reflection", ...
 // One point light at a shaded point (Integrator::local).
 struct LightTrace {
     size_t light = 0;     // 0-based, in the scene's order
+    Vec3 from;            // the point light, or the point drawn on the area light
+    Vec3 scale;           // irradiance times d^2 (rt/geometry/light.h, LightSample)
     Real ndotl = 0;       // n.l with the outward shading normal
     bool facing = false;  // n.l above its rounding noise: the light counts at all
     // The shadow ray (never culled); not traced when the light is within 2 eps of the point.
@@ -30,7 +33,7 @@ struct LightTrace {
     bool occluder_found = false;  // the nearest occluder, found by a second (closest-hit) query
     ShapeRef occluder{ShapeKind::Triangle, 0};
     Real occluder_t = 0;
-    // When lit: irradiance I / d^2 (spec 2.8), the Blinn-Phong terms and their sum as added.
+    // When lit: irradiance scale / d^2 (spec 2.8), the Blinn-Phong terms and their sum as added.
     Vec3 irradiance, diffuse, specular, added;
     Real ndoth = 0;
 };
@@ -42,10 +45,12 @@ struct RayTrace {
     Ray ray;
     Real tmin = 0, tmax = 0;  // the interval searched
     bool cull = false;
-    int medium = -1;       // the dielectric material it travels inside, or -1
-    Real weight = 1;       // what its radiance is multiplied by in the pixel
-    Vec3 factor{1, 1, 1};  // what the parent multiplies its radiance by
-    bool pruned = false;   // weight below the integrator's threshold: not traced
+    int medium = -1;         // the dielectric material it travels inside, or -1
+    Real weight = 1;         // what its radiance is multiplied by in the pixel
+    Vec3 factor{1, 1, 1};    // what the parent multiplies its radiance by
+    bool perturbed = false;  // a rough surface's ray: `ray` turned from `ideal` (Roughness)
+    Vec3 ideal;
+    bool pruned = false;  // weight below the integrator's threshold: not traced
 
     bool hit = false;
     ShapeRef shape{ShapeKind::Triangle, 0};
@@ -87,11 +92,21 @@ struct PixelTrace {
     double min_weight = kDefaultMinWeight;  // the options' TraceOptions::min_weight
     RayTrace root;
     Vec3 clamped;        // clamp_channel of root.radiance
-    uint8_t pixel[3]{};  // quantize of root.radiance: the image's byte
+    uint8_t pixel[3]{};  // the image's byte: quantize of root.radiance, or of `mean` with samples
+    // A camera with samples (rt/shading/pixel_samples.h): the one traced (root), where it
+    // fell, and the pixel's mean over all of them, which the image holds.
+    int samples = 0;  // 0: the centre ray, no samples
+    int sample = 0;
+    uint64_t seed = 0;
+    Real dx = Real(0.5), dy = Real(0.5), lx = Real(0.5), ly = Real(0.5);
+    bool lens = false;
+    Vec3 mean;
 };
 
-// Traces pixel (x, y) of camera `camera` (0-based; both in range) as render() does.
-PixelTrace trace_pixel(const Scene& scene, size_t camera, int x, int y, const TraceOptions& options, Rounding rounding);
+// Traces pixel (x, y) of camera `camera` (0-based; both in range) as render() does: its
+// sample `sample` (0 <= sample < max(1, samples)) under `seed`.
+PixelTrace trace_pixel(const Scene& scene, size_t camera, int x, int y, const TraceOptions& options, Rounding rounding,
+                       uint64_t seed = kDefaultSeed, int sample = 0);
 
 // The tree as indented text, and as JSON (numbers as %.17g; the 8-bit value at the top
 // as "pixel": [r, g, b]).

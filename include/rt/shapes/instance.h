@@ -27,10 +27,12 @@ struct Instance {
     const Scene* mesh = nullptr;  // the mesh's triangles and BVH, in object space
     Affine to_object;             // world -> object
     uint32_t material = 0;
+    Vec3 motion;  // MotionBlur: at time t of a ray the whole instance is moved by motion * t
 
     static Instance build(const Desc& d, const BuildInputs& in);
 
-    // The world box around the mesh's box (its BVH root's), moved; empty for an empty mesh.
+    // The world box around the mesh's box (its BVH root's), moved, and swept along its
+    // motion; empty for an empty mesh.
     Box bounds() const;
     template <bool kCull, bool kShadow>
     bool intersect(const Ray& ray, Real tmin, Real tmax, Real& t, Real w[3], uint32_t& part) const {

@@ -47,9 +47,12 @@ struct Sphere {
     // Transformed: world -> the space where it is the unit sphere about the origin.
     bool transformed = false;
     Affine to_unit;
+    // MotionBlur: at time t of a ray it is moved by motion * t (world space).
+    bool moving = false;
+    Vec3 motion;
 
     static Sphere build(const Desc& d, const BuildInputs&) {
-        Sphere s{d.center, d.radius, d.material, false, Affine{}};
+        Sphere s{d.center, d.radius, d.material, false, Affine{}, !is_still(d.motion), d.motion};
         if (!d.transform.is_identity()) {
             s.transformed = true;
             s.to_unit = Affine::scaling(1 / double(d.radius), 1 / double(d.radius), 1 / double(d.radius)) *
@@ -59,7 +62,9 @@ struct Sphere {
         return s;
     }
 
-    Box bounds() const {
+    // Around every place it takes over the shutter.
+    Box bounds() const { return moving ? swept(still_bounds(), motion) : still_bounds(); }
+    Box still_bounds() const {
         if (transformed) {  // the unit cube about the unit sphere, moved to the world
             const Affine to_world = to_unit.inverse();
             Vec3 lo{Real(HUGE_VAL), Real(HUGE_VAL), Real(HUGE_VAL)}, hi = -lo;
@@ -74,8 +79,21 @@ struct Sphere {
         const Vec3 r{radius, radius, radius};
         return Box::around(center - r, center + r);
     }
+    // A moving sphere is tested where it is at the ray's time, and keeps how far it
+    // moved in w for surface().
     template <bool kCull, bool kShadow>
-    bool intersect(const Ray& ray, Real tmin, Real tmax, Real& t, Real*, uint32_t&) const {
+    bool intersect(const Ray& ray, Real tmin, Real tmax, Real& t, Real* w, uint32_t& part) const {
+        if (moving) {
+            const Vec3 shift = motion * ray.time;
+            w[0] = shift.x;
+            w[1] = shift.y;
+            w[2] = shift.z;
+            return intersect_still({ray.org - shift, ray.dir, ray.time}, tmin, tmax, t);
+        }
+        (void)part;
+        return intersect_still(ray, tmin, tmax, t);
+    }
+    bool intersect_still(const Ray& ray, Real tmin, Real tmax, Real& t) const {
         if (!transformed) return intersect_sphere(ray, center, radius, tmin, tmax, t);
         // In the unit sphere's space the direction has length `len`, so the unit-speed
         // distance s there is t * len.
@@ -87,7 +105,8 @@ struct Sphere {
         t = s / len;
         return t > tmin && t < tmax;
     }
-    Surface surface(Vec3 p, const Real*, uint32_t) const {
+    Surface surface(Vec3 p, const Real* w, uint32_t) const {
+        if (moving) p = p - Vec3{w[0], w[1], w[2]};
         if (transformed) {
             const Vec3 n = normalize(to_unit.transposed_vector(to_unit.point(p)));
             return {n, n, material};
