@@ -79,7 +79,7 @@ void check_official(const std::string& rel, int rays, size_t min_triangles) {
                 for (int px = x; px < std::min(x + 4, cam.width); ++px) row[n++] = cam.primary_ray(px, py);
             ck.packet(row, n, 0, HUGE_VAL);
             const std::vector<Vec3> points = ck.hit_points(row, n);
-            for (const rt::PointLight& light : s.setup.lights) ck.shadow_packet(points, light.position, rng);
+            for (const rt::Light& light : s.setup.lights) ck.shadow_packet(points, light.position, rng);
         }
         ck.any(r, 0, HUGE_VAL);
         const Real span = rt::length(size);

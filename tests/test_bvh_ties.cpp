@@ -25,7 +25,7 @@ TEST(BvhProperty, AllCoincident) {
     m.positions = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}};
     for (int i = 0; i < 3000; ++i) m.indices.insert(m.indices.end(), {0, 1, 2});
     d.meshes.push_back(m);
-    for (int i = 0; i < 500; ++i) d.all<rt::SphereDesc>().push_back({{0, "1", nullptr}, {0, 0, 5}, 1, {}});
+    for (int i = 0; i < 500; ++i) d.all<rt::SphereDesc>().push_back({{0, "1", nullptr, {}}, {0, 0, 5}, 1, {}});
     const rt::Scene s = rt::build_scene(d);
     check_structure(s);
     EXPECT_LE(s.accel.bvh.depth, 64);
@@ -58,8 +58,8 @@ TEST(BvhProperty, TiesAcrossKinds) {
     m.positions = {{-1, -1, 5}, {1, -1, 5}, {0, 1, 5}};
     m.indices = {0, 1, 2};
     d.meshes.push_back(m);
-    d.all<rt::SphereDesc>().push_back({{0, "1", nullptr}, {0, 0, 6}, 1, {}});  // near root at z = 5
-    d.all<rt::PlaneDesc>().push_back({{0, "1"}, {0, 0, 5}, {0, 0, -1}});
+    d.all<rt::SphereDesc>().push_back({{0, "1", nullptr, {}}, {0, 0, 6}, 1, {}});  // near root at z = 5
+    d.all<rt::PlaneDesc>().push_back({{0, "1", nullptr, {}}, {0, 0, 5}, {0, 0, -1}});
     const rt::Ray r{{0, 0, 0}, {0, 0, 1}};
     rt::Hit h;
     {

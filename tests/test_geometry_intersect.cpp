@@ -304,8 +304,9 @@ TEST(GeometryScene, TrianglesTakeTheirMeshsMaterialAndShading) {
 TEST(GeometryScene, ClosestOfMixedPrimitives) {
     // Along -z from z = 10: plane z = 0 at t 10, sphere radius 1 at z = 3 (t = 6), triangle at z = 5 (t = 5).
     rt::SceneDesc d = empty_desc();
-    d.all<rt::PlaneDesc>().push_back({{0, "1"}, {0, 0, 0}, {0, 0, 2}});  // normal gets normalised by build_scene
-    d.all<rt::SphereDesc>().push_back({{0, "1", nullptr}, {0, 0, 3}, 1, {}});
+    d.all<rt::PlaneDesc>().push_back(
+        {{0, "1", nullptr, {}}, {0, 0, 0}, {0, 0, 2}});  // normal gets normalised by build_scene
+    d.all<rt::SphereDesc>().push_back({{0, "1", nullptr, {}}, {0, 0, 3}, 1, {}});
     rt::MeshDesc m;
     m.positions = {{-1, -1, 5}, {1, -1, 5}, {0, 1, 5}};
     m.indices = {0, 1, 2};

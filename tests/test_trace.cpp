@@ -186,8 +186,8 @@ TEST(Trace, ShapeNamesCountSkippedFacesAndUseTheFilesIds) {
     tri.positions = {{0, 0, 1}, {1, 0, 1}, {0, 1, 1}};
     tri.indices = {0, 1, 2};
     d.meshes = {a, b, tri};
-    d.all<rt::SphereDesc>().push_back({{0, "3", nullptr}, {0, 0, 5}, 1, {}});
-    d.all<rt::PlaneDesc>().push_back({{0, "11"}, {0, 0, -5}, {0, 0, 1}});
+    d.all<rt::SphereDesc>().push_back({{0, "3", nullptr, {}}, {0, 0, 5}, 1, {}});
+    d.all<rt::PlaneDesc>().push_back({{0, "11", nullptr, {}}, {0, 0, -5}, {0, 0, 1}});
     const rt::Scene s = rt::build_scene(d);
     ASSERT_EQ(s.geometry.triangles.size(), 3u);
     EXPECT_EQ(s.names.name({rt::ShapeKind::Triangle, 0}), "Mesh 5, face 1");

@@ -62,6 +62,15 @@ struct Box {
     }
 };
 
+// Box b and b moved by `motion`, and everything between: where a shape that moves by
+// `motion` over the shutter (MotionBlur) can be.
+inline Box swept(const Box& b, Vec3 motion) {
+    if (!(b.lo[0] <= b.hi[0])) return b;  // empty
+    Box out = b;
+    out.extend(Box::around(Vec3{b.lo[0], b.lo[1], b.lo[2]} + motion, Vec3{b.hi[0], b.hi[1], b.hi[2]} + motion));
+    return out;
+}
+
 // A primitive's bounds handed to the builder, laid out as the builder's SIMD
 // loads want them (lo in floats 0..2, hi in 4..6). The builder sorts these in
 // place; `id` is set by Bvh::build. `alone` is 1 for a primitive that leaves

@@ -34,7 +34,9 @@ inline RayPre prepare(const Ray& r) {
     // coordinate, and a load spanning several of those stores cannot take their values
     // from the store buffer; it waits for them to reach the cache (a copy as one
     // 32-byte load stalled every traversal call for some 15 cycles).
-    p.ray = {{opaque(r.org.x), opaque(r.org.y), opaque(r.org.z)}, {opaque(r.dir.x), opaque(r.dir.y), opaque(r.dir.z)}};
+    p.ray = {{opaque(r.org.x), opaque(r.org.y), opaque(r.org.z)},
+             {opaque(r.dir.x), opaque(r.dir.y), opaque(r.dir.z)},
+             r.time};
     Real ax = std::fabs(r.dir.x), ay = std::fabs(r.dir.y), az = std::fabs(r.dir.z);
     p.kz = (ax > ay) ? (ax > az ? 0 : 2) : (ay > az ? 1 : 2);
     p.kx = (p.kz + 1) % 3;

@@ -17,9 +17,9 @@ enum class LightKind : uint32_t { Point, Area };
 
 struct Light {
     LightKind kind = LightKind::Point;
-    Vec3 position;  // a point light's position; an area light's centre
-    Vec3 power;     // Intensity (point) or Radiance (area)
-    Vec3 normal;    // area: unit normal, and
+    Vec3 position;        // a point light's position; an area light's centre
+    Vec3 power;           // Intensity (point) or Radiance (area)
+    Vec3 normal;          // area: unit normal, and
     Vec3 edge_u, edge_v;  // its edges: orthogonal, each of length Size
     Real area = 0;        // area: Size^2
 

@@ -17,9 +17,9 @@ constexpr uint64_t kDefaultSeed = 0;
 
 // How a camera's pixels are sampled.
 struct PixelSampling {
-    int samples = 0;        // per pixel; 0: one ray through the centre (no NumSamples)
+    int samples = 0;  // per pixel; 0: one ray through the centre (no NumSamples)
     uint64_t seed = kDefaultSeed;
-    bool timed = false;     // some shape moves: each sample draws a time
+    bool timed = false;  // some shape moves: each sample draws a time
 };
 
 // The sampling of camera `camera` of `scene` under `seed` (its NumSamples, or --samples,

@@ -30,15 +30,6 @@ namespace rt {
 struct MeshDesc;  // rt/loader/scene_desc.h
 struct Scene;     // rt/geometry/scene.h
 
-// Box b and b moved by `motion`, and everything between: where a shape that moves by
-// `motion` over the shutter (MotionBlur) can be.
-inline Box swept(const Box& b, Vec3 motion) {
-    if (!(b.lo[0] <= b.hi[0])) return b;  // empty
-    Box out = b;
-    out.extend(Box::around(Vec3{b.lo[0], b.lo[1], b.lo[2]} + motion, Vec3{b.hi[0], b.hi[1], b.hi[2]} + motion));
-    return out;
-}
-
 // What shading needs to know about a hit point.
 struct Surface {
     Vec3 ng;            // unit geometric normal, the outward (counter-clockwise) side
