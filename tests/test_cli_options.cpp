@@ -141,9 +141,10 @@ TEST(Cli, UsageErrorsAreOneLinePlusTheUsage) {
     const std::string usage =
         "usage: raytracer [-o DIR] [-j N] [--precision double|float] [--isa LEVEL] [--cull|--no-cull]\n"
         "                 [--rounding truncate|nearest] [--min-weight W] [--stats FILE] [-q] [--strict]\n"
-        "                 [--repeat N] [--max-depth N] [--epsilon-scale F] [--bvh-... (measurements)]\n"
-        "                 [--frames A:B] [--shard K/N] scene.json|scene.xml...\n"
-        "       raytracer --trace X,Y [--camera N] [--trace-json FILE] [options] scene.json|scene.xml";
+        "                 [--samples N] [--seed S] [--repeat N] [--max-depth N] [--epsilon-scale F]\n"
+        "                 [--bvh-... (measurements)] [--frames A:B] [--shard K/N] scene.json|scene.xml...\n"
+        "       raytracer --trace X,Y [--camera N] [--sample K] [--trace-json FILE] [options] "
+        "scene.json|scene.xml";
     const std::vector<std::pair<std::vector<std::string>, std::string>> cases = {
         {{"--no-such-option", "scene.json"}, "unknown option '--no-such-option'"},
         {{"-j", "many", "scene.json"}, "--threads needs a whole number from 1 to 1024, got 'many'"},
@@ -247,14 +248,14 @@ TEST(Cli, OneProgressLinePerImageUnlessQuiet) {
 
 TEST(Cli, UnknownKeysAreWarningsNotErrors) {
     json j = sample_scene("warned.png");
-    j["Scene"]["Cameras"]["Camera"]["NumSamples"] = "4";
+    j["Scene"]["Cameras"]["Camera"]["Exposure"] = "4";
     j["Scene"]["TexCoordData"] = nullptr;
     TempDir tmp;
     write_scene(tmp.path(), "scene.json", j);
     RunResult r = run_raytracer({"-o", tmp / "out", "scene.json"}, tmp.path());
     EXPECT_EQ(r.exit_code, 0) << dump(r);
     EXPECT_TRUE(is_png(tmp / "out/warned.png", 16, 16));
-    for (const char* key : {"NumSamples", "TexCoordData"}) {
+    for (const char* key : {"Exposure", "TexCoordData"}) {
         bool warned = false;
         for (const std::string& l : split_lines(r.err))
             if (contains(l, key) && contains(lower(l), "warning")) warned = true;

@@ -287,9 +287,9 @@ json everything() {
     cam["ApertureSize"] = "0.1";
     j["Scene"]["Lights"]["AreaLight"] = area_light();
     j["Scene"]["Lights"]["AreaLight"]["Position"] = "0 1 -1";
-    j["Scene"]["Materials"]["Material"] = json::array(
-        {j["Scene"]["Materials"]["Material"],
-         {{"_id", "2"}, {"_type", "mirror"}, {"MirrorReflectance", "0.8 0.8 0.8"}, {"Roughness", "0.2"}}});
+    j["Scene"]["Materials"]["Material"] =
+        json::array({j["Scene"]["Materials"]["Material"],
+                     {{"_id", "2"}, {"_type", "mirror"}, {"MirrorReflectance", "0.8 0.8 0.8"}, {"Roughness", "0.2"}}});
     j["Scene"]["Objects"]["Sphere"]["MotionBlur"] = "0.3 0 0";
     j["Scene"]["Objects"]["Plane"]["Material"] = "2";
     j["Scene"]["Objects"]["Mesh"]["MotionBlur"] = "0 0.2 0";
@@ -336,7 +336,8 @@ json pinpoint(const std::string& objects, const std::string& samples = "1024") {
         "Lights": {"AmbientLight": "1 1 1"},
         "Materials": {"Material": {"_id": "1", "AmbientReflectance": "200 200 200"}},
         "VertexData": {"_data": "0 0 0 -1 -1 0 1 -1 0 1 1 0 -1 1 0"},
-        "Objects": )" + objects + "}}");
+        "Objects": )" + objects +
+                       "}}");
 }
 
 // Through x = 2 the ray meets a unit shape moving from x = 0 by 4 over the shutter for
@@ -353,8 +354,7 @@ void expect_half_covered(const std::string& objects) {
 
 TEST(MotionBlur, EveryKindMovesOverTheShutter) {
     expect_half_covered(R"({"Sphere": {"Material": "1", "Center": "1", "Radius": "1", "MotionBlur": "4 0 0"}})");
-    expect_half_covered(
-        R"({"Mesh": {"Material": "1", "Faces": {"_data": "2 3 4 2 4 5"}, "MotionBlur": "4 0 0"}})");
+    expect_half_covered(R"({"Mesh": {"Material": "1", "Faces": {"_data": "2 3 4 2 4 5"}, "MotionBlur": "4 0 0"}})");
     expect_half_covered(R"({"Triangle": [{"Material": "1", "Indices": "2 3 4", "MotionBlur": "4 0 0"},
         {"Material": "1", "Indices": "2 4 5", "MotionBlur": "4 0 0"}]})");
     // An instance moves as a whole; its base mesh stays where it is (x in -1..1).
@@ -364,8 +364,8 @@ TEST(MotionBlur, EveryKindMovesOverTheShutter) {
 
 TEST(MotionBlur, BoundsCoverTheMotionWithoutRebuilding) {
     // A ray at time t meets the sphere where it is at t, whichever BVH leaf holds it.
-    const rt::Scene s = build(
-        pinpoint(R"({"Sphere": {"Material": "1", "Center": "1", "Radius": "1", "MotionBlur": "10 0 0"}})", "4"));
+    const rt::Scene s =
+        build(pinpoint(R"({"Sphere": {"Material": "1", "Center": "1", "Radius": "1", "MotionBlur": "10 0 0"}})", "4"));
     EXPECT_TRUE(s.geometry.moves);
     for (const Real t : {Real(0), Real(0.25), Real(0.5), Real(0.99)}) {
         rt::Hit h;

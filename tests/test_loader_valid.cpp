@@ -365,7 +365,7 @@ TEST(LoaderValid, EachInlineMeshGetsItsOwnVertices) {
 TEST(LoaderValid, UnknownKeysWarnButLoad) {
     json j = sample();
     j["Scene"]["TexCoordData"] = nullptr;
-    j["Scene"]["Cameras"]["Camera"]["NumSamples"] = "1";
+    j["Scene"]["Cameras"]["Camera"]["Exposure"] = "1";
     j["Scene"]["Objects"]["Sphere"]["Colour"] = "red";
     rt::SceneDesc d;
     ASSERT_NO_THROW(d = parse(j.dump()));
@@ -376,7 +376,7 @@ TEST(LoaderValid, UnknownKeysWarnButLoad) {
         return false;
     };
     EXPECT_TRUE(mentioned("TexCoordData"));
-    EXPECT_TRUE(mentioned("NumSamples"));
+    EXPECT_TRUE(mentioned("Exposure"));
     EXPECT_TRUE(mentioned("Colour"));
     // The rest of the scene is unaffected.
     expect_same(d, parse(kSample));

@@ -127,14 +127,14 @@ TEST(MisspeltKeys, EachKindOfObjectSuggestsTheKeyMeant) {
 // A key nothing like a valid one is reported without a suggestion.
 TEST(MisspeltKeys, NoSuggestionForAnUnrelatedKey) {
     json scene = every_kind_scene();
-    scene["Scene"]["Cameras"]["Camera"]["NumSamples"] = "4";
+    scene["Scene"]["Cameras"]["Camera"]["Exposure"] = "4";
     scene["Scene"]["Objects"]["Sphere"]["Texture"] = "wood";
     Rendered out;
     render(out, scene);
     EXPECT_EQ(out.r.exit_code, 0) << dump(out.r);
     const std::vector<std::string> lines = split_lines(out.r.err);
     ASSERT_EQ(lines.size(), 3u) << dump(out.r);
-    EXPECT_EQ(lines[0], "warning: k.json: /Scene/Cameras/Camera/NumSamples: unknown key ignored");
+    EXPECT_EQ(lines[0], "warning: k.json: /Scene/Cameras/Camera/Exposure: unknown key ignored");
     EXPECT_EQ(lines[1], "warning: k.json: /Scene/Objects/Sphere/Texture: unknown key ignored");
     EXPECT_TRUE(contains(lines[2], ", 2 warnings")) << lines[2];
 }

@@ -494,8 +494,9 @@ TEST(Trace, UsageErrorsExitTwoAndWriteNothing) {
         {{"--trace", "1,1", "--camera", "2", "prism.json"}, "--camera 2: prism.json has 1 camera"},
         {{"--trace", "1,1", "--camera", "0", "prism.json"},
          "--camera needs a whole number from 1 to 1073741824, got '0'"},
-        {{"--camera", "1", "prism.json"}, "--camera and --trace-json need --trace"},
-        {{"--trace-json", "t.json", "prism.json"}, "--camera and --trace-json need --trace"},
+        {{"--camera", "1", "prism.json"}, "--camera, --sample and --trace-json need --trace"},
+        {{"--trace-json", "t.json", "prism.json"}, "--camera, --sample and --trace-json need --trace"},
+        {{"--sample", "2", "prism.json"}, "--camera, --sample and --trace-json need --trace"},
         {{"--trace", "1,1", "prism.json", "prism.json"}, "--trace takes one scene file"},
     };
     for (const auto& [args, message] : cases) {

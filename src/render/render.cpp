@@ -65,7 +65,7 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
             // Neighbouring pixels' camera rays traverse the tree as one packet of
             // kPacketW x kPacketH pixels.
             uint8_t pixels[kTile][kTile * 3];
-            if (sampling.samples > 0) {
+            if (sampling.samples > 1) {
                 // Distribution ray tracing: each pixel's samples (pixel_samples.h).
                 for (int y = y0; y < y1; ++y)
                     for (int x = x0; x < x1; ++x) {

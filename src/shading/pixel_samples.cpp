@@ -19,22 +19,24 @@ PixelSampling pixel_sampling(const Scene& scene, size_t camera, uint64_t seed) {
 CameraSample camera_sample(const Camera& cam, const PixelSampling& sampling, int x, int y, int k) {
     CameraSample c;
     c.stream = SampleStream(sampling.seed, uint64_t(y) * uint64_t(cam.width) + uint64_t(x), uint32_t(k));
-    if (sampling.samples == 0) {
-        c.ray = cam.primary_ray(x, y);
-        return c;
-    }
-    const Real u1 = c.stream.next(), u2 = c.stream.next();
-    const int n = static_cast<int>(std::lround(std::sqrt(double(sampling.samples))));
-    if (n * n == sampling.samples) {
-        c.dx = (Real(k % n) + u1) / Real(n);
-        c.dy = (Real(k / n) + u2) / Real(n);
-    } else {
-        c.dx = u1;
-        c.dy = u2;
+    if (sampling.samples > 1) {
+        const Real u1 = c.stream.next(), u2 = c.stream.next();
+        const int n = static_cast<int>(std::lround(std::sqrt(double(sampling.samples))));
+        if (n * n == sampling.samples) {
+            c.dx = (Real(k % n) + u1) / Real(n);
+            c.dy = (Real(k / n) + u2) / Real(n);
+        } else {
+            c.dx = u1;
+            c.dy = u2;
+        }
     }
     if (cam.aperture > 0) {
         c.lx = c.stream.next();
         c.ly = c.stream.next();
+    }
+    if (cam.aperture == 0 && !sampling.timed && sampling.samples <= 1) {
+        c.ray = cam.primary_ray(x, y);  // the pinhole's centre ray, as without samples
+        return c;
     }
     const Real time = sampling.timed ? c.stream.next() : Real(0);
     c.ray = cam.sample_ray(x, y, c.dx, c.dy, c.lx, c.ly, time);

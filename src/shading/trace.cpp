@@ -45,7 +45,7 @@ PixelTrace trace_pixel(const Scene& scene, size_t camera, int x, int y, const Tr
     t.lens = cam.aperture > 0;
     const Vec3 c = trace_primary(scene, cs.ray, options, &cache, &t.root, &cs.stream);
     t.clamped = {clamp_channel(c.x), clamp_channel(c.y), clamp_channel(c.z)};
-    t.mean = sampling.samples > 0 ? sample_pixel(scene, cam, sampling, x, y, options, &cache) : c;
+    t.mean = sampling.samples > 1 ? sample_pixel(scene, cam, sampling, x, y, options, &cache) : c;
     t.pixel[0] = quantize(t.mean.x, rounding);
     t.pixel[1] = quantize(t.mean.y, rounding);
     t.pixel[2] = quantize(t.mean.z, rounding);

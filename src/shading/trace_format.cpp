@@ -364,10 +364,10 @@ std::string trace_text(const Scene& scene, const PixelTrace& t) {
                       (scene.geometry.moves ? ", time " + num(t.root.ray.time) : ""));
     }
     w.ray(t.root, 0, false);
-    if (t.samples > 0)
+    if (t.samples > 1)
         w.line(0, "this sample: " + vec(t.clamped) + " clamped, " + vec(t.root.radiance) + " before clamping");
     w.line(0, "pixel [" + pixel_text(t.pixel) + "] after rounding (" + rounding_name(t.rounding) + "), from " +
-                  (t.samples > 0 ? "the mean of its " + std::to_string(t.samples) + " samples " + vec(t.mean) +
+                  (t.samples > 1 ? "the mean of its " + std::to_string(t.samples) + " samples " + vec(t.mean) +
                                        " (clamped after averaging)"
                                  : vec(t.clamped) + " clamped, " + vec(t.root.radiance) + " before clamping"));
     return w.take();

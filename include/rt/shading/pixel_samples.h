@@ -27,9 +27,10 @@ struct PixelSampling {
 PixelSampling pixel_sampling(const Scene& scene, size_t camera, uint64_t seed);
 
 // Sample k (0 <= k < max(1, samples)) of pixel (x, y): its camera ray, and the stream its
-// path draws from after the camera's numbers. Its point in the pixel: stratified on an
-// n x n grid when samples is a square n^2 (sample k in cell (k % n, k / n)), uniform
-// otherwise; its lens point and time uniform. Without samples: the centre ray.
+// path draws from after the camera's numbers. Its point in the pixel: the centre for one
+// sample or none (assignment 1's bunny.json writes NumSamples 1: its reference is of
+// centre rays), stratified on an n x n grid when samples is a square n^2 > 1 (sample k
+// in cell (k % n, k / n)), uniform otherwise; its lens point and time uniform.
 struct CameraSample {
     Ray ray;
     SampleStream stream;
