@@ -1,6 +1,7 @@
 // The Monte Carlo comparison of rt/image/block_diff.h on hand-made images whose block means
-// are known (a block shifted, half a level everywhere, checkerboard noise, edge blocks), and
-// its heatmap.
+// are known (a block shifted, half a level everywhere, checkerboard noise, edge blocks), its
+// heatmap, and ./rtdiff --mc: two images with the noise floor, folders, exit statuses and
+// usage errors.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,6 +12,7 @@
 #include "rt/image/image.h"
 #include "rt/image/image_diff.h"
 #include "rtdiff_test_support.h"
+#include "test_support.h"
 
 using namespace rtdiff_test;
 
@@ -33,6 +35,10 @@ rt::Image checkerboard(rt::Image img, int delta, int odd_delta) {
                 at(img, x, y, c) = uint8_t(int(at(img, x, y, c)) + ((x + y) % 2 == 0 ? delta : odd_delta));
     return img;
 }
+
+const std::string kPass =
+    "pass: at most 1% of the 16x16 blocks off by more than 3 levels and every channel's mean difference within 1 "
+    "level";
 
 }  // namespace
 
@@ -156,4 +162,146 @@ TEST(BlockDiff, HeatmapColoursEachBlockByItsLargestChannelMeanDifference) {
     EXPECT_LT(legend.height, rt::add_heatmap_legend(h, 3, 4).height);
     for (int y = 0; y < 32; ++y)
         for (int x = 0; x < 32; ++x) ASSERT_EQ(px(legend, x, y, 0), px(h, x, y, 0));
+}
+
+// ./rtdiff --mc.
+
+TEST_F(RtdiffTool, McTwoImagesPrintTheBlockFiguresAndAVerdict) {
+    const rt::Image ref = gradient(32, 32);
+    rt::write_png(ref, tmp_ / "ref.png");
+    rt::write_png(shifted(ref, 16, 0, 32, 16, 4), tmp_ / "shift.png");
+    rt::write_png(checkerboard(ref, 1, 0), tmp_ / "half.png");
+    rt::write_png(checkerboard(ref, 20, -20), tmp_ / "noisy.png");
+    rt::write_png(shifted(ref, 0, 0, 32, 32, 2), tmp_ / "bright.png");
+
+    const RunResult r = run({"--mc", "shift.png", "ref.png"});
+    EXPECT_EQ(r.exit_code, 1) << r.err;  // 25% of the blocks off
+    EXPECT_EQ(r.err, "");
+    const std::vector<std::string> lines = split_lines(r.out);
+    ASSERT_EQ(lines.size(), 4u) << r.out;
+    EXPECT_EQ(lines[0], "shift.png vs ref.png (reference): same size, 32x32, 4 blocks of 16x16 pixels");
+    EXPECT_EQ(lines[1], "               % blocks >3     A-B: R      G      B    all      RMSE       PSNR");
+    EXPECT_EQ(lines[2], "vs reference       25.0000      +1.00  +1.00  +1.00  +1.00      2.00   42.11 dB");
+    EXPECT_EQ(lines[3], "FAIL: 25.0000% of the blocks off by more than 3 (at most 1%)");
+    // The criterion's bounds are inclusive and can be moved.
+    const RunResult loose = run({"--mc", "--max-off-blocks", "25", "shift.png", "ref.png"});
+    EXPECT_EQ(loose.exit_code, 0);
+    EXPECT_TRUE(contains(loose.out, "pass: at most 25% of the 16x16 blocks off")) << loose.out;
+    EXPECT_EQ(run({"--mc", "--block-threshold", "4", "shift.png", "ref.png"}).exit_code, 0);
+    const RunResult small = run({"--mc", "--block", "8", "shift.png", "ref.png"});
+    EXPECT_EQ(small.exit_code, 1);
+    EXPECT_TRUE(contains(small.out, "same size, 32x32, 16 blocks of 8x8 pixels\n")) << small.out;
+    EXPECT_TRUE(contains(small.out, "FAIL: 25.0000% of the blocks off by more than 3")) << small.out;
+
+    // Half a level everywhere: no block off, a mean of +0.50: a pass.
+    const RunResult half = run({"--mc", "half.png", "ref.png"});
+    EXPECT_EQ(half.exit_code, 0) << half.out;
+    EXPECT_TRUE(contains(half.out, "vs reference        0.0000      +0.50  +0.50  +0.50  +0.50      0.71")) << half.out;
+    EXPECT_EQ(split_lines(half.out).back(), kPass);
+    // Noise of 20 levels: a pass by blocks, every pixel off pixel by pixel.
+    const RunResult noisy = run({"--mc", "noisy.png", "ref.png"});
+    EXPECT_EQ(noisy.exit_code, 0) << noisy.out;
+    EXPECT_TRUE(contains(noisy.out, "vs reference        0.0000      +0.00  +0.00  +0.00  +0.00     20.00"))
+        << noisy.out;
+    EXPECT_TRUE(contains(run({"noisy.png", "ref.png"}).out, "1024 of 1024 pixels (100.0000%) off"));
+    // Two levels brighter everywhere: no block off, but a bias.
+    const RunResult bright = run({"--mc", "bright.png", "ref.png"});
+    EXPECT_EQ(bright.exit_code, 1);
+    EXPECT_EQ(split_lines(bright.out).back(), "FAIL: mean difference over 1 level: R +2.00, G +2.00, B +2.00");
+    EXPECT_EQ(run({"--mc", "--max-mean-diff", "2", "bright.png", "ref.png"}).exit_code, 0);
+    // The same image: a pass.
+    const RunResult same = run({"--mc", "ref.png", "ref.png"});
+    EXPECT_EQ(same.exit_code, 0);
+    EXPECT_TRUE(contains(same.out, "vs reference        0.0000      +0.00  +0.00  +0.00  +0.00      0.00        inf"))
+        << same.out;
+    // --heatmap: the blocks' heatmap.
+    EXPECT_EQ(run({"--mc", "--heatmap", "h.png", "shift.png", "ref.png"}).exit_code, 1);
+    rt::Image h;
+    ASSERT_TRUE(load_png(tmp_ / "h.png", h));
+    const rt::Image shift = shifted(ref, 16, 0, 32, 16, 4);
+    EXPECT_EQ(h.rgb, rt::block_heatmap_with_legend(shift, rt::compare_blocks(shift, ref)).rgb);
+}
+
+TEST_F(RtdiffTool, McNoiseFloorIsPrintedBesideTheFigures) {
+    const rt::Image ref = gradient(32, 32);
+    rt::write_png(ref, tmp_ / "ref.png");
+    rt::write_png(checkerboard(ref, 20, -20), tmp_ / "seed1.png");
+    rt::write_png(checkerboard(ref, -20, 20), tmp_ / "seed2.png");
+    const RunResult r = run({"--mc", "--noise", "seed2.png", "seed1.png", "ref.png"});
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    const std::vector<std::string> lines = split_lines(r.out);
+    ASSERT_EQ(lines.size(), 5u) << r.out;
+    EXPECT_EQ(lines[0],
+              "seed1.png vs ref.png (reference), other seed seed2.png: same size, 32x32, 4 blocks of 16x16 pixels");
+    EXPECT_EQ(lines[2], "vs reference        0.0000      +0.00  +0.00  +0.00  +0.00     20.00   22.11 dB");
+    EXPECT_EQ(lines[3], "vs other seed       0.0000      +0.00  +0.00  +0.00  +0.00     40.00   16.09 dB");
+    EXPECT_EQ(lines[4], kPass);
+    // The other seed must be A's size; a missing one is bad input.
+    rt::write_png(gradient(32, 16), tmp_ / "short.png");
+    const RunResult bad = run({"--mc", "--noise", "short.png", "seed1.png", "ref.png"});
+    EXPECT_EQ(bad.exit_code, 1);
+    EXPECT_EQ(bad.err, "error: short.png: 32x16, but seed1.png is 32x32\n");
+    EXPECT_EQ(bad.out, "");
+    EXPECT_EQ(run({"--mc", "--noise", "none.png", "seed1.png", "ref.png"}).err, "error: none.png: no such file\n");
+}
+
+TEST_F(RtdiffTool, McFoldersWithTheirOtherSeeds) {
+    const rt::Image ref = gradient(32, 32);
+    for (const char* d : {"a", "b", "n", "h"}) create_dirs(tmp_ / d);
+    rt::write_png(shifted(ref, 16, 0, 32, 16, 4), tmp_ / "a/x.png");
+    rt::write_png(ref, tmp_ / "b/x.png");
+    rt::write_png(checkerboard(ref, 20, -20), tmp_ / "a/y.png");
+    rt::write_png(ref, tmp_ / "b/y.png");
+    rt::write_png(checkerboard(ref, -20, 20), tmp_ / "n/y.png");  // no n/x.png
+    const RunResult r = run({"--mc", "--noise-dir", "n", "--heatmap", "h", "a", "b"});
+    EXPECT_EQ(r.exit_code, 1) << r.err;  // x.png is no pass
+    const std::vector<std::string> lines = split_lines(r.out);
+    ASSERT_EQ(lines.size(), 6u) << r.out;
+    EXPECT_EQ(lines[0],
+              "image                 size   % blocks >3     A-B: R      G      B    all      RMSE       PSNR");
+    EXPECT_EQ(lines[1],
+              "x.png                32x32       25.0000      +1.00  +1.00  +1.00  +1.00      2.00   42.11 dB  FAIL");
+    EXPECT_EQ(lines[2], "  vs other seed: n/x.png: no such file");
+    EXPECT_EQ(lines[3],
+              "y.png                32x32        0.0000      +0.00  +0.00  +0.00  +0.00     20.00   22.11 dB");
+    EXPECT_EQ(lines[4],
+              "  vs other seed                   0.0000      +0.00  +0.00  +0.00  +0.00     40.00   16.09 dB");
+    EXPECT_EQ(lines[5],
+              "2 compared, 0 only in a, 0 only in b, 1 FAIL (a pass: at most 1% of the 16x16 blocks off by more than 3 "
+              "levels and every channel's mean difference within 1 level)");
+    rt::Image h;
+    ASSERT_TRUE(load_png(tmp_ / "h/x.png", h));
+    const rt::Image x = shifted(ref, 16, 0, 32, 16, 4);
+    EXPECT_EQ(h.rgb, rt::block_heatmap_with_legend(x, rt::compare_blocks(x, ref)).rgb);
+    // Only passes: exit status 0.
+    EXPECT_EQ(run({"--mc", "--max-off-blocks", "25", "a", "b"}).exit_code, 0);
+}
+
+TEST_F(RtdiffTool, McUsageErrorsExitTwo) {
+    create_dirs(tmp_ / "d");
+    const std::vector<std::vector<std::string>> cases = {
+        {"--block", "8", "a.png", "b.png"},                        // without --mc
+        {"--max-mean-diff", "2", "a.png", "b.png"},                // without --mc
+        {"--noise", "b.png", "a.png", "b.png"},                    // without --mc
+        {"--mc", "--tolerance", "2", "a.png", "b.png"},            // a pixel measure
+        {"--mc", "--fail-above", "1", "a.png", "b.png"},           // a pixel measure
+        {"--mc", "--scene", "s.json", "a.png", "b.png"},           // no pixel to trace
+        {"--mc", "--noise-dir", "d", "a.png", "b.png"},            // two images take --noise
+        {"--mc", "--noise", "a.png", "d", "d"},                    // folders take --noise-dir
+        {"--mc", "--block", "0", "a.png", "b.png"},                // blocks of 1 pixel or more
+        {"--mc", "--block-threshold", "256", "a.png", "b.png"},    // levels
+        {"--mc", "--max-off-blocks", "101", "a.png", "b.png"},     // a percentage
+        {"--mc", "--max-mean-diff", "-1", "a.png", "b.png"},       // levels
+        {"--manifest", "m.tsv", "--noise", "a.png", "d"},          // manifests take --noise-dir
+        {"--manifest", "m.tsv", "--mc", "--tolerance", "1", "d"},  // every scene by blocks
+    };
+    for (const std::vector<std::string>& args : cases) {
+        const RunResult r = run(args);
+        EXPECT_EQ(r.exit_code, 2) << args[0] << " " << args[1];
+        EXPECT_EQ(r.err.rfind("error: ", 0), 0u) << r.err;
+    }
+    // A --noise-dir that is no folder is bad input.
+    const RunResult r = run({"--mc", "--noise-dir", "nowhere", "d", "d"});
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(r.err, "error: nowhere: not a folder\n");
 }
