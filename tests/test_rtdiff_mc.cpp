@@ -1,7 +1,7 @@
 // The Monte Carlo comparison of rt/image/block_diff.h on hand-made images whose block means
 // are known (a block shifted, half a level everywhere, checkerboard noise, edge blocks), its
-// heatmap, and ./rtdiff --mc: two images with the noise floor, folders, exit statuses and
-// usage errors.
+// heatmap, and ./rtdiff --mc: two images with the noise floor, folders, the manifest's choice
+// by NumSamples, exit statuses and usage errors.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -34,6 +34,21 @@ rt::Image checkerboard(rt::Image img, int delta, int odd_delta) {
             for (int c = 0; c < 3; ++c)
                 at(img, x, y, c) = uint8_t(int(at(img, x, y, c)) + ((x + y) % 2 == 0 ? delta : odd_delta));
     return img;
+}
+
+// The line of `out` that starts with `start`; empty when none does.
+std::string line_starting(const std::string& out, const std::string& start) {
+    for (const std::string& l : split_lines(out))
+        if (l.rfind(start, 0) == 0) return l;
+    return "";
+}
+
+// The index of the line of `out` that starts with `start`; -1 when none does.
+int line_index(const std::string& out, const std::string& start) {
+    const std::vector<std::string> lines = split_lines(out);
+    for (size_t i = 0; i < lines.size(); ++i)
+        if (lines[i].rfind(start, 0) == 0) return int(i);
+    return -1;
 }
 
 const std::string kPass =
@@ -275,6 +290,83 @@ TEST_F(RtdiffTool, McFoldersWithTheirOtherSeeds) {
     EXPECT_EQ(h.rgb, rt::block_heatmap_with_legend(x, rt::compare_blocks(x, ref)).rgb);
     // Only passes: exit status 0.
     EXPECT_EQ(run({"--mc", "--max-off-blocks", "25", "a", "b"}).exit_code, 0);
+}
+
+TEST_F(RtdiffTool, ManifestComparesScenesOfManySamplesByTheirBlocks) {
+    const ManifestTree t(tmp_.path());
+    const auto scene = [&t](const std::string& name, const std::string& cameras) {
+        write_text(t.scenes + "/" + name, R"({"Scene": {"Cameras": {"Camera": )" + cameras + "}}}");
+    };
+    scene("one.json", R"({"_id": "1", "NumSamples": "1", "ImageName": "one.png"})");
+    scene("none.json", R"({"_id": "1", "ImageName": "none.png"})");
+    scene("many.json", R"({"_id": "1", "NumSamples": "100", "ImageName": "many.png"})");
+    scene("arr.json", R"([{"_id": "1", "NumSamples": "1"}, {"_id": "2", "NumSamples": "16"}])");
+    scene("num.json", R"({"_id": "1", "NumSamples": 4})");
+    write_text(t.scenes + "/xml.xml",
+               "<Scene><Cameras><Camera id=\"1\"><NumSamples>9</NumSamples><ImageName>xml.png</ImageName>"
+               "</Camera></Cameras></Scene>\n");
+    const std::vector<std::string> names = {"one", "none", "nofile", "many", "arr", "num", "xml"};
+    const rt::Image ref = gradient(40, 40);  // blocks of 16, 16 and 8 pixels each way: 9
+    const std::string out = tmp_ / "out", noise = tmp_ / "noise";
+    create_dirs(out);
+    create_dirs(noise);
+    for (const std::string& n : names) {
+        rt::write_png(ref, t.refs + "/" + n + ".png");
+        // Noise of 20 levels: every pixel off, no block.
+        rt::write_png(checkerboard(ref, 20, -20), out + "/" + n + ".png");
+    }
+    rt::write_png(shifted(ref, 0, 0, 16, 16, 4), out + "/many.png");  // 1 block of 9 off
+    rt::write_png(checkerboard(ref, -20, 20), noise + "/arr.png");
+    std::vector<std::string> lines;
+    for (const std::string& n : names)
+        lines.push_back((n == "xml" ? "xml.xml" : n + ".json") + "\t" + n + ".png\treferences/hw9/" + n +
+                        ".png\tcomplete");
+    const std::string m = t.manifest(lines);
+
+    const RunResult r =
+        run_program(rtdiff_path(), {"--manifest", m, "--noise-dir", noise, "--heatmap", tmp_ / "heat", out});
+    EXPECT_EQ(r.exit_code, 1) << r.err;
+    // Pixel by pixel (NumSamples 1, none, a scene that cannot be read): every pixel off.
+    EXPECT_EQ(line_index(r.out, "verdict    image  "), 0) << r.out;
+    for (const std::string n : {"one", "none", "nofile"})
+        EXPECT_TRUE(contains(line_starting(r.out, "FAIL       " + n + ".png  "), "100.0000")) << r.out;
+    // By blocks (NumSamples > 1: an object, any camera of an array, a number, XML), below their headings.
+    const int mc_heading = line_index(r.out, "verdict    image            size   % blocks >3     A-B: R");
+    EXPECT_GT(mc_heading, 0) << r.out;
+    EXPECT_EQ(line_index(r.out, "FAIL       many.png        40x40       11.1111      +0.64  +0.64  +0.64  +0.64"),
+              mc_heading + 1)
+        << r.out;
+    EXPECT_EQ(split_lines(r.out)[size_t(mc_heading) + 2], "  vs other seed: not in " + noise + " or its subfolders");
+    EXPECT_EQ(split_lines(r.out)[size_t(mc_heading) + 3],
+              "  fails: 11.1111% of the blocks off by more than 3 (at most 1%)");
+    for (const std::string n : {"arr", "num", "xml"})
+        EXPECT_TRUE(contains(line_starting(r.out, "pass       " + n + ".png  "), "0.0000      +0.00")) << r.out;
+    const int arr = line_index(r.out, "pass       arr.png  ");
+    EXPECT_EQ(split_lines(r.out)[size_t(arr) + 1],
+              "  vs other seed                         0.0000      +0.00  +0.00  +0.00  +0.00     40.00   16.09 dB")
+        << r.out;
+    EXPECT_EQ(split_lines(r.out).back(),
+              "7 scenes: 3 pass, 4 FAIL, 0 missing, 0 ambiguous, 0 error, 0 skipped (inputs incomplete); a pass has "
+              "at most 0.2% of its pixels off by more than 1; a Monte Carlo scene's pass has at most 1% of the 16x16 "
+              "blocks off by more than 3 levels and every channel's mean difference within 1 level");
+    // The heatmaps: of pixels, or of blocks.
+    rt::Image h;
+    ASSERT_TRUE(load_png(tmp_ / "heat/many.png", h));
+    const rt::Image many = shifted(ref, 0, 0, 16, 16, 4);
+    EXPECT_EQ(h.rgb, rt::block_heatmap_with_legend(many, rt::compare_blocks(many, ref)).rgb);
+    ASSERT_TRUE(load_png(tmp_ / "heat/one.png", h));
+    const rt::Image one = checkerboard(ref, 20, -20);
+    EXPECT_EQ(h.rgb, rt::heatmap_with_legend(one, ref, rt::compare_images(one, ref)).rgb);
+
+    // --mc: every scene by its blocks, one heading; a looser bar passes them all.
+    const RunResult all = run_program(rtdiff_path(), {"--manifest", m, "--mc", "--max-off-blocks", "12", out});
+    EXPECT_EQ(all.exit_code, 0) << all.out << all.err;
+    EXPECT_EQ(line_index(all.out, "verdict    image            size   % blocks >3"), 0) << all.out;
+    EXPECT_TRUE(contains(split_lines(all.out).back(),
+                         "7 scenes: 7 pass, 0 FAIL, 0 missing, 0 ambiguous, 0 error, 0 skipped (inputs incomplete); a "
+                         "pass has at most 12% of the 16x16 blocks off"))
+        << all.out;
+    EXPECT_EQ(all.err, "");
 }
 
 TEST_F(RtdiffTool, McUsageErrorsExitTwo) {
