@@ -106,8 +106,9 @@ ONCE_SRC := src/image/stb_impl.cpp src/image/stb_image_impl.cpp src/cli/options.
 # ./raytracer alone compiles none of it. The float tools' few references to stb's reader
 # are resolved by the double librt_tools.a.
 LIB_SRC  := $(filter-out src/main.cpp %_main.cpp,$(shell find src -name '*.cpp' | sort))
-TOOL_SRC := $(filter src/convert/% src/image/image_diff.cpp src/image/diff_page.cpp src/image/diff_heatmap.cpp \
-                      src/image/bitmap_font.cpp src/image/stb_image_impl.cpp src/tools/%,$(LIB_SRC))
+TOOL_SRC := $(filter src/convert/% src/image/image_diff.cpp src/image/block_diff.cpp src/image/diff_page.cpp \
+                      src/image/diff_heatmap.cpp src/image/bitmap_font.cpp src/image/stb_image_impl.cpp \
+                      src/tools/%,$(LIB_SRC))
 RENDER_SRC := $(filter-out $(TOOL_SRC),$(LIB_SRC))
 # copy_dir(level,float): a copy's object folder; copy_obj(level,float,sources): its objects
 # of those sources (the ONCE_SRC ones in the primary double copy only).

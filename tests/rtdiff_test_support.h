@@ -1,6 +1,6 @@
 // Shared by the tests of rt/image/image_diff.h and ./rtdiff (tests/test_rtdiff*.cpp):
-// hand-made images, pixel access, the --html page's links, and a fixture that runs ./rtdiff
-// in a temporary folder holding two images one pixel apart.
+// hand-made images, pixel access, the --html page's links, a course-like tree for --manifest,
+// and a fixture that runs ./rtdiff in a temporary folder holding two images one pixel apart.
 #pragma once
 #include <gtest/gtest.h>
 
@@ -56,6 +56,26 @@ inline std::vector<std::string> attributes(const std::string& page, const std::s
     }
     return out;
 }
+
+// A course-like tree under `root`: shared/scenes/hw9/MANIFEST.tsv (lines `manifest`),
+// a scene cams.json of two cameras (the second writes second.png), and references in
+// shared/references/hw9/.
+struct ManifestTree {
+    explicit ManifestTree(const std::string& root)
+        : shared(root + "/shared"), scenes(shared + "/scenes/hw9"), refs(shared + "/references/hw9") {
+        create_dirs(scenes);
+        create_dirs(refs + "/sub");
+        write_text(scenes + "/cams.json", R"({"Scene": {"Cameras": {"Camera": [{"_id": "1", "ImageName": "first.png"},)"
+                                          R"( {"_id": "2", "ImageName": "second.png"}]}}})");
+    }
+    std::string manifest(const std::vector<std::string>& lines) const {
+        std::string text = "# scene\timage\treference\tinputs\n";
+        for (const std::string& l : lines) text += l + "\n";
+        write_text(scenes + "/MANIFEST.tsv", text);
+        return scenes + "/MANIFEST.tsv";
+    }
+    std::string shared, scenes, refs;
+};
 
 // ./rtdiff run in tmp_, which holds a.png, its copy b.png with pixel 13,7 off by 2, and a.ppm.
 class RtdiffTool : public ::testing::Test {

@@ -39,26 +39,6 @@ TEST_F(RtdiffTool, FoldersMatchImagesInSubfoldersByRelativePath) {
 
 namespace {
 
-// A course-like tree under `root`: shared/scenes/hw9/MANIFEST.tsv (lines `manifest`),
-// a scene cams.json of two cameras (the second writes second.png), and references in
-// shared/references/hw9/.
-struct ManifestTree {
-    explicit ManifestTree(const std::string& root)
-        : shared(root + "/shared"), scenes(shared + "/scenes/hw9"), refs(shared + "/references/hw9") {
-        create_dirs(scenes);
-        create_dirs(refs + "/sub");
-        write_text(scenes + "/cams.json", R"({"Scene": {"Cameras": {"Camera": [{"_id": "1", "ImageName": "first.png"},)"
-                                          R"( {"_id": "2", "ImageName": "second.png"}]}}})");
-    }
-    std::string manifest(const std::vector<std::string>& lines) const {
-        std::string text = "# scene\timage\treference\tinputs\n";
-        for (const std::string& l : lines) text += l + "\n";
-        write_text(scenes + "/MANIFEST.tsv", text);
-        return scenes + "/MANIFEST.tsv";
-    }
-    std::string shared, scenes, refs;
-};
-
 // Every line of `err` is ours: "error: ..." or "warning: ...".
 bool only_errors_and_warnings(const std::string& err) {
     for (const std::string& l : split_lines(err))

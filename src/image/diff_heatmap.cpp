@@ -1,6 +1,7 @@
 // The heatmap of where two images differ, the rings around its small spots and its legend
-// strip (rt/image/image_diff.h): one colour rule for all, so the legend shows exactly the
-// colours the heatmap uses.
+// strip (rt/image/image_diff.h), and its form for blocks of a Monte Carlo comparison
+// (rt/image/block_diff.h): one colour rule for all, so the legend shows exactly the colours
+// the heatmap uses.
 #include <algorithm>
 #include <cstdint>
 #include <cstdlib>
@@ -8,6 +9,7 @@
 #include <vector>
 
 #include "rt/image/bitmap_font.h"
+#include "rt/image/block_diff.h"
 #include "rt/image/image_diff.h"
 
 namespace rt {
@@ -33,6 +35,19 @@ void over_colour(int over, uint8_t out[3]) {
     out[0] = 255;
     out[1] = uint8_t(255 - (over - 1) * 255 / (kRampLevels - 1));
     out[2] = 0;
+}
+
+// The colour of a pixel whose difference is `d` levels at `tolerance`; `a_px` is its value in
+// image a, which an equal pixel shows as its Rec. 601 luma dimmed to a quarter (context only).
+void heat_colour(const uint8_t* a_px, int d, int tolerance, uint8_t out[3]) {
+    if (d == 0) {
+        const int luma = (299 * a_px[0] + 587 * a_px[1] + 114 * a_px[2]) / 1000;
+        out[0] = out[1] = out[2] = uint8_t(luma / 4);
+    } else if (d <= tolerance) {
+        std::copy(kWithin, kWithin + 3, out);
+    } else {
+        over_colour(d - tolerance, out);
+    }
 }
 
 void set(Image& img, int x, int y, const uint8_t rgb[3]) {
@@ -83,17 +98,23 @@ Image diff_heatmap(const Image& a, const Image& b, int tolerance) {
     for (size_t p = 0; p < a.rgb.size(); p += 3) {
         int d = 0;
         for (size_t c = 0; c < 3; ++c) d = std::max(d, std::abs(int(a.rgb[p + c]) - int(b.rgb[p + c])));
-        uint8_t* out = &h.rgb[p];
-        if (d == 0) {
-            // Rec. 601 luma of a, dimmed: context only.
-            const int luma = (299 * a.rgb[p] + 587 * a.rgb[p + 1] + 114 * a.rgb[p + 2]) / 1000;
-            out[0] = out[1] = out[2] = uint8_t(luma / 4);
-        } else if (d <= tolerance) {
-            std::copy(kWithin, kWithin + 3, out);
-        } else {
-            over_colour(d - tolerance, out);
-        }
+        heat_colour(&a.rgb[p], d, tolerance, &h.rgb[p]);
     }
+    return h;
+}
+
+Image block_heatmap(const Image& a, const BlockComparison& c) {
+    Image h;
+    if (!c.same_size || a.width != c.width || a.height != c.height || c.block_diff.size() != c.blocks) return h;
+    h.width = a.width;
+    h.height = a.height;
+    h.rgb.resize(a.rgb.size());
+    for (int y = 0; y < a.height; ++y)
+        for (int x = 0; x < a.width; ++x) {
+            const size_t p = (size_t(y) * size_t(a.width) + size_t(x)) * 3;
+            const int d = c.block_diff[size_t(y / c.block) * size_t(c.blocks_x) + size_t(x / c.block)];
+            heat_colour(&a.rgb[p], d, c.threshold, &h.rgb[p]);
+        }
     return h;
 }
 
@@ -154,9 +175,10 @@ size_t ring_small_spots(Image& heat, const Image& a, const Image& b, int toleran
 
 // The strip, top to bottom: a caption (largest difference, tolerance); a bar of swatches
 // (equal, within the tolerance when it is not 0) and the yellow-to-red ramp, with a mark
-// above it at max_diff; the levels under each; what each colour means; what a ring means. All sizes are in
-// units of `s`, the text's scale: 1 up to 639 pixels wide, 2 up to 959, then 3.
-Image add_heatmap_legend(const Image& heat, int tolerance, int max_diff) {
+// above it at max_diff; the levels under each; what each colour means; what a ring means
+// (not for blocks, which are not ringed). All sizes are in units of `s`, the text's scale: 1
+// up to 639 pixels wide, 2 up to 959, then 3.
+Image add_heatmap_legend(const Image& heat, int tolerance, int max_diff, int block) {
     const int width = std::max(heat.width, kHeatmapLegendMinWidth);
     const int s = std::clamp(width / 320, 1, 3);
     const int pad = 4 * s, line = kGlyphHeight * s;
@@ -167,14 +189,17 @@ Image add_heatmap_legend(const Image& heat, int tolerance, int max_diff) {
     const int ring_y = key_y + line + 3 * s;
     Image out;
     out.width = width;
-    out.height = ring_y + line + pad;
+    out.height = (block > 0 ? key_y : ring_y) + line + pad;
     out.rgb.assign(size_t(out.width) * size_t(out.height) * 3, kPaper[0]);
     for (int y = 0; y < heat.height; ++y)
         std::copy_n(&heat.rgb[size_t(y) * size_t(heat.width) * 3], size_t(heat.width) * 3,
                     &out.rgb[size_t(y) * size_t(width) * 3]);
 
-    draw_text(out, pad, caption_y,
-              "MAX CHANNEL DIFF " + std::to_string(max_diff) + ", TOLERANCE " + std::to_string(tolerance), s, kInk);
+    const std::string caption =
+        block > 0 ? std::to_string(block) + "X" + std::to_string(block) + " BLOCK MEANS: MAX DIFF " +
+                        std::to_string(max_diff) + ", TOL " + std::to_string(tolerance)
+                  : "MAX CHANNEL DIFF " + std::to_string(max_diff) + ", TOLERANCE " + std::to_string(tolerance);
+    draw_text(out, pad, caption_y, caption, s, kInk);
 
     // The bar: equal swatch, within-tolerance swatch, ramp; each outlined.
     const int gap = 6 * s, equal_w = 20 * s, within_w = tolerance > 0 ? 36 * s : 0;
@@ -215,6 +240,7 @@ Image add_heatmap_legend(const Image& heat, int tolerance, int max_diff) {
 
     draw_text(out, pad, key_y,
               tolerance > 0 ? "GREY EQUAL, BLUE <= TOL, YELLOW-RED OVER" : "GREY EQUAL, YELLOW-RED OVER", s, kInk);
+    if (block > 0) return out;
     // A ring as ring_small_spots draws one, and its meaning.
     const int icon_r = (line + 1) / 2;
     ring(out, pad + icon_r, ring_y + line / 2, icon_r, s, kRing);
@@ -226,6 +252,10 @@ Image heatmap_with_legend(const Image& a, const Image& b, const ImageComparison&
     Image heat = diff_heatmap(a, b, c.tolerance);
     ring_small_spots(heat, a, b, c.tolerance);
     return add_heatmap_legend(heat, c.tolerance, c.max_diff);
+}
+
+Image block_heatmap_with_legend(const Image& a, const BlockComparison& c) {
+    return add_heatmap_legend(block_heatmap(a, c), c.threshold, c.max_block_diff, c.block);
 }
 
 }  // namespace rt

@@ -1,9 +1,10 @@
-// What rtdiff's modes share (rtdiff.h): the trace command, heatmap files, folder walks.
+// What rtdiff's modes share (rtdiff.h): the trace command, heatmap files and pages, folder walks.
 #include <filesystem>
 #include <fstream>
 #include <system_error>
 
 #include "rt/core/error.h"
+#include "rt/io/atomic_file.h"
 #include "rtdiff.h"
 
 namespace fs = std::filesystem;
@@ -41,6 +42,19 @@ std::string relative_to(const std::string& file, const std::string& dir) {
 }
 
 bool over_limit(const rt::ImageComparison& c, const Options& o) { return o.fail_above && c.pct_over > *o.fail_above; }
+
+void write_pair_outputs(const rt::Image& heat, const std::string& a_path, const std::string& b_path,
+                        const rt::ImageComparison& c, const std::vector<rt::PixelDiff>& worst, const Options& o) {
+    if (!o.heatmap.empty()) rt::write_png(heat, o.heatmap);
+    if (o.html.empty()) return;
+    const std::string name = fs::path(a_path).filename().string();
+    create_folder((fs::path(o.html) / "heatmaps").string());
+    rt::write_png(heat, (fs::path(o.html) / page_heatmap(name)).string());
+    const rt::DiffPageRow row{
+        name, c, "", worst, relative_to(a_path, o.html), relative_to(b_path, o.html), page_heatmap(name)};
+    rt::write_file_atomic((fs::path(o.html) / "index.html").string(),
+                          rt::diff_page_html(a_path, b_path, o.tolerance, {row}, {}, {}));
+}
 
 void write_heatmaps(const rt::Image& heat, const std::string& name, const Options& o) {
     const std::string file = fs::path(name).replace_extension(".png").string();

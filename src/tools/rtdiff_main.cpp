@@ -1,7 +1,8 @@
 // rtdiff: compares two images, every image of the same relative path in two folders, or
 // every image a course manifest names with its reference, with the measure the
-// conformance tests use (rt/image/image_diff.h; issue 15). The manifest mode is in
-// rtdiff_manifest.cpp.
+// conformance tests use (rt/image/image_diff.h; issue 15), or with --mc by the means of
+// blocks of pixels (rt/image/block_diff.h). The manifest mode is in rtdiff_manifest.cpp, the
+// Monte Carlo figures and two images compared by them in rtdiff_mc.cpp.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -29,8 +30,11 @@ const rt::cli::Program kProgram{
     "rtdiff", "rtdiff 1.0",
     "usage: rtdiff [--tolerance N] [--heatmap OUT] [--html DIR] [--fail-above P]\n"
     "              [--scene FILE [--camera N]] [--only-common] A B\n"
+    "       rtdiff --mc [--block N] [--block-threshold L] [--max-off-blocks P] [--max-mean-diff L]\n"
+    "              [--noise OTHER | --noise-dir DIR] [--heatmap OUT] [--html DIR] [--only-common] A B\n"
     "       rtdiff --manifest MANIFEST.tsv [--tolerance N] [--heatmap DIR] [--html DIR]\n"
-    "              [--fail-above P] OUTDIR",
+    "              [--fail-above P] [--mc] [--block N] [--block-threshold L] [--max-off-blocks P]\n"
+    "              [--max-mean-diff L] [--noise-dir DIR] OUTDIR",
     "Compares image A with image B (PNG or PPM), or every image of the same relative path in\n"
     "folders A and B and their subfolders: size, largest and mean channel difference, the\n"
     "pixels with some channel off by more than the tolerance (count, share and bounding box)\n"
@@ -39,10 +43,17 @@ const rt::cli::Program kProgram{
     "that differs). Images in one folder only are not compared; one line per folder names them.\n"
     "--manifest: each image the course's MANIFEST.tsv names, found in OUTDIR or a subfolder,\n"
     "against its reference: one row per scene (pass, FAIL over --fail-above, default 0.2%;\n"
-    "missing; ambiguous; skipped when the scene's inputs are incomplete) and a total.\n",
+    "missing; ambiguous; skipped when the scene's inputs are incomplete) and a total.\n"
+    "--mc, for Monte Carlo renders (many random samples per pixel), instead: the share of\n"
+    "16x16 blocks with some channel's block mean off by more than 3 levels, the mean signed\n"
+    "difference A - B per channel and overall, RMSE and PSNR; a pass has at most 1% of the\n"
+    "blocks off and every channel's mean difference within 1 level. --manifest compares so\n"
+    "every scene whose cameras take NumSamples > 1. --noise: the same figures of A against\n"
+    "A rendered with another seed, the noise floor.\n",
     "exit status: 0 compared (and within --fail-above); 1 bad input, a pair of folders' images\n"
-    "that could not be compared, no image in both folders, or over --fail-above; manifests: a\n"
-    "malformed line, or a scene that is not a pass (skipped ones aside); 2 usage error.\n"
+    "that could not be compared, no image in both folders, or over --fail-above; --mc: a pair\n"
+    "that is not a pass; manifests: a malformed line, or a scene that is not a pass (skipped\n"
+    "ones aside); 2 usage error.\n"
     "Images in one folder only do not change it."};
 
 // How many of the worst pixels two images' comparison lists.
@@ -73,20 +84,8 @@ int compare_files(const std::string& a_path, const std::string& b_path, const Op
         for (const rt::PixelDiff& p : worst) std::printf("  %s\n", rt::pixel_text(p).c_str());
         std::printf("trace the worst: %s\n", rtdiff::trace_command(worst.front(), o.scene, o.camera).c_str());
     }
-    if (!o.heatmap.empty() || !o.html.empty()) {
-        const rt::Image heat = rt::heatmap_with_legend(a, b, c);
-        if (!o.heatmap.empty()) rt::write_png(heat, o.heatmap);
-        if (!o.html.empty()) {
-            // The page of one row, named as A is.
-            const std::string name = fs::path(a_path).filename().string();
-            create_folder((fs::path(o.html) / "heatmaps").string());
-            rt::write_png(heat, (fs::path(o.html) / page_heatmap(name)).string());
-            const rt::DiffPageRow row{
-                name, c, "", worst, relative_to(a_path, o.html), relative_to(b_path, o.html), page_heatmap(name)};
-            rt::write_file_atomic((fs::path(o.html) / "index.html").string(),
-                                  rt::diff_page_html(a_path, b_path, o.tolerance, {row}, {}, {}));
-        }
-    }
+    if (!o.heatmap.empty() || !o.html.empty())
+        rtdiff::write_pair_outputs(rt::heatmap_with_legend(a, b, c), a_path, b_path, c, worst, o);
     if (over_limit(c, o)) {
         std::printf("over --fail-above %g%%\n", *o.fail_above);
         return 1;
@@ -99,7 +98,56 @@ struct Row {
     rt::ImageComparison c;
     std::string error;                 // not empty: this pair could not be compared
     std::vector<rt::PixelDiff> worst;  // its worst pixel, when any differs
+    // --mc: the block comparison, why it is no pass (empty for a pass), and --noise-dir's
+    // figures of A against its other seed, or why there are none.
+    rt::BlockComparison m;
+    std::string failure;
+    std::optional<rt::BlockComparison> noise;
+    std::string noise_note;
 };
+
+// The table of compare_dirs: one row per pair, "  OVER" after those over --fail-above, the
+// worst pixel under each that differs; returns the pairs over --fail-above.
+size_t print_rows(const std::vector<Row>& rows, int w, const Options& o) {
+    std::printf("%-*s  %9s  %4s  %8s  %10s  %9s  %s\n", w, "image", "size", "max", "mean", "% off", "PSNR", "box");
+    size_t over = 0;
+    for (const Row& r : rows) {
+        if (!r.error.empty()) {
+            std::printf("%-*s  %s\n", w, r.name.c_str(), r.error.c_str());
+            continue;
+        }
+        const std::string size = std::to_string(r.c.width) + "x" + std::to_string(r.c.height);
+        const bool bad = over_limit(r.c, o);
+        if (bad) ++over;
+        std::printf("%-*s  %9s  %4d  %8.4f  %10.4f  %9s  %s%s\n", w, r.name.c_str(), size.c_str(), r.c.max_diff,
+                    r.c.mean_diff, r.c.pct_over, rt::psnr_text(r.c.psnr).c_str(), rt::box_text(r.c).c_str(),
+                    bad ? "  OVER" : "");
+        if (!r.worst.empty()) std::printf("  worst pixel %s\n", rt::pixel_text(r.worst.front()).c_str());
+    }
+    return over;
+}
+
+// The table of compare_dirs with --mc: one row per pair, "  FAIL" after those that are no
+// pass, the other seed's figures under each when --noise-dir is given; returns the FAILs.
+size_t print_mc_rows(const std::vector<Row>& rows, int w, const Options& o) {
+    std::printf("%-*s  %9s  %s\n", w, "image", "size", rtdiff::mc_headings(o).c_str());
+    size_t failed = 0;
+    for (const Row& r : rows) {
+        if (!r.error.empty()) {
+            std::printf("%-*s  %s\n", w, r.name.c_str(), r.error.c_str());
+            continue;
+        }
+        const std::string size = std::to_string(r.c.width) + "x" + std::to_string(r.c.height);
+        if (!r.failure.empty()) ++failed;
+        std::printf("%-*s  %9s  %s%s\n", w, r.name.c_str(), size.c_str(), rtdiff::mc_figures(r.m).c_str(),
+                    r.failure.empty() ? "" : "  FAIL");
+        if (r.noise)
+            std::printf("%-*s  %9s  %s\n", w, "  vs other seed", "", rtdiff::mc_figures(*r.noise).c_str());
+        else if (!o.noise_dir.empty())
+            std::printf("  vs other seed: %s\n", r.noise_note.c_str());
+    }
+    return failed;
+}
 
 // "21 images only in B (not compared): a.png, b.png, c.png, d.png, ...": one line for all
 // the images found in folder `dir` only; nothing when there are none.
@@ -153,51 +201,51 @@ int compare_dirs(const std::string& a_dir, const std::string& b_dir, const Optio
         try {
             const rt::Image a = rt::read_image(a_path), b = rt::read_image(b_path);
             r.c = rt::compare_images(a, b, o.tolerance);
-            if (!r.c.same_size)
+            if (!r.c.same_size) {
                 r.error = "sizes differ: " + std::to_string(a.width) + "x" + std::to_string(a.height) + " vs " +
                           std::to_string(b.width) + "x" + std::to_string(b.height);
-            else
+            } else if (o.mc) {
+                r.m = rtdiff::compare_mc(a, b, o);
+                r.failure = rtdiff::mc_failure(r.m, o);
+                if (!o.noise_dir.empty())
+                    r.noise = rtdiff::compare_noise(a, (fs::path(o.noise_dir) / n).string(), o, r.noise_note);
+            } else {
                 r.worst = rt::worst_pixels(a, b, 1);
+            }
             if (r.c.same_size && (!o.heatmap.empty() || !o.html.empty()))
-                rtdiff::write_heatmaps(rt::heatmap_with_legend(a, b, r.c), n, o);
+                rtdiff::write_heatmaps(
+                    o.mc ? rt::block_heatmap_with_legend(a, r.m) : rt::heatmap_with_legend(a, b, r.c), n, o);
         } catch (const rt::InputError& e) {
             r.error = e.what();
         }
         if (!r.error.empty()) status = 1;
         rows.push_back(r);
     }
-    // Worst first: failures, then by share of pixels off, then by largest difference.
-    std::stable_sort(rows.begin(), rows.end(), [](const Row& x, const Row& y) {
+    // Worst first: failures, then by share of pixels off, then by largest difference; --mc:
+    // those that are no pass, then by share of blocks off, then by the largest channel's bias.
+    std::stable_sort(rows.begin(), rows.end(), [&o](const Row& x, const Row& y) {
         if (x.error.empty() != y.error.empty()) return !x.error.empty();
+        if (o.mc) {
+            if (x.failure.empty() != y.failure.empty()) return !x.failure.empty();
+            if (x.m.pct_off != y.m.pct_off) return x.m.pct_off > y.m.pct_off;
+            return x.m.max_channel_bias() > y.m.max_channel_bias();
+        }
         if (x.c.pct_over != y.c.pct_over) return x.c.pct_over > y.c.pct_over;
         return x.c.max_diff > y.c.max_diff;
     });
-    size_t width = 5;
+    size_t width = o.mc ? 15 : 5;  // --mc: "  vs other seed" under the rows
     for (const Row& r : rows) width = std::max(width, r.name.size());
-    const int w = int(width);
-    std::printf("%-*s  %9s  %4s  %8s  %10s  %9s  %s\n", w, "image", "size", "max", "mean", "% off", "PSNR", "box");
-    size_t over = 0;
-    for (const Row& r : rows) {
-        if (!r.error.empty()) {
-            std::printf("%-*s  %s\n", w, r.name.c_str(), r.error.c_str());
-            continue;
-        }
-        const std::string size = std::to_string(r.c.width) + "x" + std::to_string(r.c.height);
-        const bool bad = over_limit(r.c, o);
-        if (bad) ++over;
-        std::printf("%-*s  %9s  %4d  %8.4f  %10.4f  %9s  %s%s\n", w, r.name.c_str(), size.c_str(), r.c.max_diff,
-                    r.c.mean_diff, r.c.pct_over, rt::psnr_text(r.c.psnr).c_str(), rt::box_text(r.c).c_str(),
-                    bad ? "  OVER" : "");
-        if (!r.worst.empty()) std::printf("  worst pixel %s\n", rt::pixel_text(r.worst.front()).c_str());
-    }
+    const size_t over = o.mc ? 0 : print_rows(rows, int(width), o);
+    const size_t mc_failed = o.mc ? print_mc_rows(rows, int(width), o) : 0;
     print_only_in(a_dir, only_a);
     print_only_in(b_dir, only_b);
     std::printf("%zu compared", rows.size());
     if (!o.only_common)
         std::printf(", %zu only in %s, %zu only in %s", only_a.size(), a_dir.c_str(), only_b.size(), b_dir.c_str());
     if (o.fail_above) std::printf(", %zu over --fail-above %g%%", over, *o.fail_above);
+    if (o.mc) std::printf(", %zu FAIL (a pass: %s)", mc_failed, rtdiff::mc_criterion(o).c_str());
     std::printf("\n");
-    if (over > 0) status = 1;
+    if (over > 0 || mc_failed > 0) status = 1;
     if (!o.html.empty()) write_page(a_dir, b_dir, o, rows, only_a, only_b);
     if (rows.empty()) {
         // Nothing compared is no success: a wrong folder must not pass a check.
@@ -214,6 +262,27 @@ bool is_dir(const std::string& p) {
 }
 
 bool percent(double v) { return v >= 0 && v <= 100; }
+bool levels(double v) { return v >= 0 && v <= 255; }
+
+// The usage error of a combination of options that does not go with the mode (nullopt when
+// none); `folders`: two folders, not two images.
+std::optional<std::string> mc_usage_error(const CLI::App& app, const Options& o, bool folders) {
+    const bool manifest = !o.manifest.empty();
+    size_t mc_options = 0;
+    for (const char* name : {"--block", "--block-threshold", "--max-off-blocks", "--max-mean-diff"})
+        mc_options += app.count(name);
+    if (mc_options > 0 && !o.mc && !manifest)
+        return "--block, --block-threshold, --max-off-blocks and --max-mean-diff need --mc (or --manifest)";
+    if (o.mc && (app.count("--tolerance") || app.count("--fail-above")))
+        return "--tolerance and --fail-above measure pixels, not --mc's blocks (--max-off-blocks, --max-mean-diff)";
+    if (o.mc && (!o.scene.empty() || o.camera)) return "--scene and --camera do not go with --mc";
+    if (!o.noise.empty() && (manifest || folders))
+        return "--noise is for two images: with folders and --manifest, --noise-dir DIR";
+    if (!o.noise_dir.empty() && !manifest && !folders) return "--noise-dir is for folders: with two images, --noise";
+    if ((!o.noise.empty() || (!o.noise_dir.empty() && !manifest)) && !o.mc)
+        return "--noise and --noise-dir need --mc (or --manifest)";
+    return std::nullopt;
+}
 
 }  // namespace
 
@@ -248,6 +317,25 @@ int main(int argc, char** argv) {
                   "compare each image the course's MANIFEST.tsv names, found in OUTDIR or its subfolders, with "
                   "its reference (relative to the folder two above the manifest's)",
                   o.manifest, "a file name");
+    app.add_flag("--mc", o.mc,
+                 "compare as Monte Carlo renders: by the means of blocks of pixels (--manifest: every scene; "
+                 "without it, the scenes whose cameras take NumSamples > 1)");
+    cli::add_whole(app, "--block", "N", "--mc: blocks of N x N pixels (default 16)", o.block, 1, 1 << 16);
+    cli::add_whole(app, "--block-threshold", "L",
+                   "--mc: a block is off when some channel's block mean differs by more than L levels (default 3)",
+                   o.block_threshold, 0, 255);
+    cli::add_number(app, "--max-off-blocks", "P", "--mc: a pass has at most P% of the blocks off (default 1)",
+                    o.max_off_blocks, "a percentage from 0 to 100", percent);
+    cli::add_number(app, "--max-mean-diff", "L",
+                    "--mc: a pass has every channel's mean signed difference within L levels (default 1)",
+                    o.max_mean_diff, "a number of levels from 0 to 255", levels);
+    cli::add_text(app, "--noise", "OTHER",
+                  "--mc, two images: A rendered with another seed; its figures against A are printed too, the "
+                  "noise floor",
+                  o.noise, "a file name");
+    cli::add_text(app, "--noise-dir", "DIR",
+                  "--mc and --manifest: the renders with another seed, by the same names, for the noise floor",
+                  o.noise_dir, "a folder name");
     app.add_option("files", files);
     app.final_callback([&files, &o] {
         const size_t want = o.manifest.empty() ? 2 : 1;
@@ -259,6 +347,9 @@ int main(int argc, char** argv) {
     if (const auto status = cli::parse(app, kProgram, argc, argv)) return *status;
 
     try {
+        const bool folders = o.manifest.empty() && is_dir(files[0]) && is_dir(files[1]);
+        if (const auto error = mc_usage_error(app, o, folders)) return cli::report_usage_error(kProgram, *error);
+        if (!o.noise_dir.empty() && !is_dir(o.noise_dir)) throw rt::InputError(o.noise_dir + ": not a folder");
         if (!o.manifest.empty()) {
             if (!o.scene.empty() || o.camera || o.only_common)
                 return cli::report_usage_error(kProgram,
@@ -276,7 +367,7 @@ int main(int argc, char** argv) {
         if (a_dir != b_dir)
             throw rt::InputError((a_dir ? files[1] : files[0]) + ": not a folder, but " +
                                  (a_dir ? files[0] : files[1]) + " is one");
-        return compare_files(files[0], files[1], o);
+        return o.mc ? rtdiff::compare_files_mc(files[0], files[1], o) : compare_files(files[0], files[1], o);
     } catch (const rt::InputError& e) {
         rt::cli::print_error(e.what());
     } catch (const std::bad_alloc&) {

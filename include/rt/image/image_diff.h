@@ -73,7 +73,9 @@ constexpr int kHeatmapLegendMinWidth = 256;
 // levels (0; 1 to the tolerance; just over it to 64 over), a mark at `max_diff`, what
 // each colour means and what a ring (ring_small_spots) means. `heat` is kept unchanged at the top left; the image is
 // max(heat.width, kHeatmapLegendMinWidth) wide, and white outside `heat` but for the legend.
-Image add_heatmap_legend(const Image& heat, int tolerance, int max_diff);
+// `block` > 0: the legend of block_heatmap's image of `block` x `block` blocks
+// (rt/image/block_diff.h), its caption naming them, without the ring's line.
+Image add_heatmap_legend(const Image& heat, int tolerance, int max_diff, int block = 0);
 
 // The heatmap as rtdiff writes it: diff_heatmap at c's tolerance, its small spots ringed,
 // and the legend for c's largest difference. `c` is compare_images(a, b, tolerance).
