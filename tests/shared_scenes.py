@@ -21,10 +21,15 @@ def shared_dir():
     return d if os.path.isdir(os.path.join(d, "scenes")) else ""
 
 
-def complete_scenes(shared):
+# Assignment 3's scenes take many samples per pixel: the checks that compare bytes render
+# them at this many (--samples), which every promise of sameness covers as well.
+HW3_CHECK_SAMPLES = "4"
+
+
+def complete_scenes(shared, assignments=("hw1", "hw2")):
     """(assignment, path relative to its scene folder) of every complete scene."""
     out = []
-    for hw in ("hw1", "hw2"):
+    for hw in assignments:
         with open(os.path.join(shared, "scenes", hw, "MANIFEST.tsv"), encoding="utf-8") as f:
             for line in f:
                 cols = line.rstrip("\n").split("\t")

@@ -1,12 +1,15 @@
 // Conformance against the course's reference images.
 //
-// Every row of scenes/hw1/ and scenes/hw2/MANIFEST.tsv whose inputs are "complete" is
-// rendered in process through
-// the library (load_scene -> build_scene -> render) and compared with its reference:
-// an image fails when more than 0.2% of its pixels (0.15% in float, kFailPct) differ
-// by more than one level in some channel. A Markdown table of all comparisons is printed once, after the last
-// test. Rows with missing PLY files are run through ./raytracer, which must fail
-// cleanly: a one-line error naming the missing file, and no image.
+// Every row of scenes/hw1/, scenes/hw2/ and scenes/hw3/MANIFEST.tsv whose inputs are
+// "complete" is rendered in process through the library (load_scene -> build_scene ->
+// render) and compared with its reference: an image fails when more than 0.2% of its
+// pixels (0.15% in float, kFailPct) differ by more than one level in some channel. An
+// image of many samples per pixel (assignment 3: NumSamples > 1, at its own count) is
+// compared by the means of 16x16 blocks (rt/image/block_diff.h; its noise and the
+// reference's average out there): it fails when more than 1% of the blocks have some
+// channel off by more than 3 levels, or some channel's mean differs by more than 1 level. A Markdown table of all
+// comparisons is printed once, after the last test. Rows with missing PLY files are run through ./raytracer, which must
+// fail cleanly: a one-line error naming the missing file, and no image.
 //
 // Without the shared folder every case is reported skipped, loudly (failed under CI=true).
 //
@@ -34,6 +37,7 @@
 #include <vector>
 
 #include "rt/core/error.h"
+#include "rt/image/block_diff.h"
 #include "rt/image/image.h"
 #include "rt/loader/load_scene.h"
 #include "rt/render/render.h"
@@ -82,7 +86,11 @@ std::string trim(const std::string& s) {
 
 // The assignments whose scenes and references the shared folder holds, and how many
 // complete images each manifest lists.
-const std::pair<const char*, size_t> kAssignments[] = {{"hw1", 20}, {"hw2", 6}};
+const std::pair<const char*, size_t> kAssignments[] = {{"hw1", 20}, {"hw2", 6}, {"hw3", 8}};
+
+// The bounds of a Monte Carlo image (docs/conformance.md).
+constexpr double kMaxBlocksOffPct = 1;
+constexpr double kMaxMeanDiff = 1;
 
 std::string manifest_path(const std::string& hw) {
     std::string root = shared_dir();
@@ -155,6 +163,8 @@ struct Result {
     std::string image;
     bool compared = false;
     ImageDiff diff;
+    bool by_blocks = false;  // a Monte Carlo image: `blocks`, not `diff`
+    rt::BlockComparison blocks;
     std::string error;  // why no comparison happened
 };
 
@@ -180,12 +190,40 @@ public:
     void TearDown() override {
         for (const auto& [hw, count] : kAssignments) report(hw);
     }
+    // Monte Carlo images: their block figures.
+    static void report_blocks(const std::string& hw, const std::vector<Result>& rows) {
+        int within = 0;
+        std::ostringstream os;
+        os << "\n## Conformance against the reference images (" << hw << ", by 16x16 block means)\n\n"
+           << "| image | % blocks > 3 | mean diff R G B | RMSE | PSNR | passes? |\n"
+           << "|---|---:|---:|---:|---:|:---:|\n";
+        for (const Result& r : rows) {
+            if (!r.compared || !r.by_blocks) {
+                os << "| " << r.image << " | - | - | - | - | ERROR: " << one_line(r.error) << " |\n";
+                continue;
+            }
+            const rt::BlockComparison& b = r.blocks;
+            const bool pass = b.pct_off <= kMaxBlocksOffPct && b.max_channel_bias() <= kMaxMeanDiff;
+            within += pass;
+            os << "| " << r.image << " | " << fmt(b.pct_off, 2) << " | " << fmt(b.mean_diff[0], 3) << " "
+               << fmt(b.mean_diff[1], 3) << " " << fmt(b.mean_diff[2], 3) << " | " << fmt(b.rmse, 2) << " | "
+               << (std::isinf(b.psnr) ? std::string("inf") : fmt(b.psnr, 2) + " dB") << " | "
+               << (pass ? "yes" : "NO (fails)") << " |\n";
+        }
+        os << "\n" << within << "/" << complete_count(hw) << " within 1% of blocks and 1 level of mean\n";
+        std::cout << os.str() << std::flush;
+    }
+
     static void report(const std::string& hw) {
         std::vector<Result> rows;
         for (const Result& r : results())
             if (r.hw == hw) rows.push_back(r);
         if (rows.empty()) return;
         std::sort(rows.begin(), rows.end(), [](const Result& a, const Result& b) { return a.line < b.line; });
+        if (std::any_of(rows.begin(), rows.end(), [](const Result& r) { return r.by_blocks; })) {
+            report_blocks(hw, rows);
+            return;
+        }
         int within_fail = 0, within_tight = 0;
         std::ostringstream os;
         os << "\n## Conformance against the reference images (" << hw << ")\n\n"
@@ -361,6 +399,7 @@ TEST_P(ConformanceImage, MatchesReference) {
         FAIL() << scene_path << ": " << rec.error;
     }
 
+    const int samples = ls.scene->setup.cameras[camera].samples;
     rt::Image ours;
     try {
         // Default options for every image, grass_desert's too: its manifest note says its
@@ -382,6 +421,17 @@ TEST_P(ConformanceImage, MatchesReference) {
         FAIL() << row.image << ": " << rec.error;
     }
 
+    if (samples > 1) {
+        rec.blocks = rt::compare_blocks(ours, ref);
+        rec.by_blocks = rec.compared = true;
+        const rt::BlockComparison& b = rec.blocks;
+        EXPECT_LE(b.pct_off, kMaxBlocksOffPct)
+            << row.image << ": " << fmt(b.pct_off, 2) << "% of the 16x16 blocks off by more than 3 levels";
+        EXPECT_LE(b.max_channel_bias(), kMaxMeanDiff)
+            << row.image << ": mean difference " << fmt(b.mean_diff[0], 3) << " " << fmt(b.mean_diff[1], 3) << " "
+            << fmt(b.mean_diff[2], 3) << " levels";
+        return;
+    }
     rec.diff = compare(ours, ref);
     rec.compared = true;
     EXPECT_LE(rec.diff.pct_over_1, kFailPct)
@@ -391,6 +441,7 @@ TEST_P(ConformanceImage, MatchesReference) {
 
 INSTANTIATE_TEST_SUITE_P(HW1, ConformanceImage, ::testing::ValuesIn(cases_where("hw1", true)), param_name);
 INSTANTIATE_TEST_SUITE_P(HW2, ConformanceImage, ::testing::ValuesIn(cases_where("hw2", true)), param_name);
+INSTANTIATE_TEST_SUITE_P(HW3, ConformanceImage, ::testing::ValuesIn(cases_where("hw3", true)), param_name);
 GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(ConformanceImage);
 
 // Scenes whose PLY files were not distributed: the renderer must refuse them cleanly.

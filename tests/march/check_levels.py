@@ -1,6 +1,6 @@
 """make check-march, its renders: every instruction-set level ./raytracer holds that this
 CPU executes (--isa), in both precisions, renders every complete official scene of
-assignments 1 and 2 and the repository's scenes to the same bytes; and the binary runs on
+assignments 1, 2 and 3 (at HW3_CHECK_SAMPLES samples) and the repository's scenes to the same bytes; and the binary runs on
 a CPU without AVX (qemu-x86_64 -cpu Nehalem), where it picks the baseline copy by itself and
 refuses a level the CPU lacks. Prints a line per check; exit status 1 on any failure.
 Without ../shared (RT_SHARED_DIR) the official scenes are skipped loudly (a failure when
@@ -13,7 +13,8 @@ import subprocess
 import sys
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
-from shared_scenes import REPO, RAYTRACER, check, complete_scenes, failures, isa_levels, shared_dir  # noqa: E402
+from shared_scenes import (HW3_CHECK_SAMPLES, REPO, RAYTRACER, check, complete_scenes, failures,  # noqa: E402
+                           isa_levels, shared_dir)
 
 OUT = os.path.join(REPO, "build", "march-check")
 CI = os.environ.get("CI") == "true"
@@ -42,7 +43,7 @@ def main():
                              [os.path.join(REPO, "scenes/knot/knot.json")])}
     shared = shared_dir()
     if shared:
-        for hw, s in complete_scenes(shared):
+        for hw, s in complete_scenes(shared, ("hw1", "hw2", "hw3")):
             groups.setdefault(hw, []).append(os.path.join(shared, "scenes", hw, s))
     else:
         loud_skip("the course's scenes (../shared or $RT_SHARED_DIR not found)")
@@ -51,8 +52,9 @@ def main():
         for lv in runs:
             d = os.path.join(OUT, precision, lv)
             for group, scenes in groups.items():
+                samples = ["--samples", HW3_CHECK_SAMPLES] if group == "hw3" else []
                 r = subprocess.run([RAYTRACER, "-q", "--isa", lv, "--precision", precision, "-o",
-                                    os.path.join(d, group)] + scenes, capture_output=True, text=True)
+                                    os.path.join(d, group)] + samples + scenes, capture_output=True, text=True)
                 check(r.returncode == 0,
                       f"{precision} {lv}: rendered the {len(scenes)} scene files of {group} {r.stderr.strip()[:200]}")
             sums = md5s(d)
