@@ -254,6 +254,7 @@ TEST(PixelSamples, SquareCountsAreStratifiedOnePerCell) {
     rt::Camera cam = lens_camera();
     rt::PixelSampling s;
     s.samples = 16;
+    s.grid = 4;
     s.seed = 3;
     std::set<std::pair<int, int>> cells;
     for (int k = 0; k < 16; ++k) {

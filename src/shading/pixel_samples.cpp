@@ -13,6 +13,8 @@ PixelSampling pixel_sampling(const Scene& scene, size_t camera, uint64_t seed) {
     s.samples = scene.setup.cameras.at(camera).samples;
     s.seed = seed;
     s.timed = scene.geometry.moves;
+    const int n = static_cast<int>(std::lround(std::sqrt(double(s.samples))));
+    s.grid = s.samples > 1 && n * n == s.samples ? n : 0;
     return s;
 }
 
@@ -21,8 +23,7 @@ CameraSample camera_sample(const Camera& cam, const PixelSampling& sampling, int
     c.stream = SampleStream(sampling.seed, uint64_t(y) * uint64_t(cam.width) + uint64_t(x), uint32_t(k));
     if (sampling.samples > 1) {
         const Real u1 = c.stream.next(), u2 = c.stream.next();
-        const int n = static_cast<int>(std::lround(std::sqrt(double(sampling.samples))));
-        if (n * n == sampling.samples) {
+        if (const int n = sampling.grid) {
             c.dx = (Real(k % n) + u1) / Real(n);
             c.dy = (Real(k / n) + u2) / Real(n);
         } else {

@@ -20,6 +20,7 @@ struct PixelSampling {
     int samples = 0;  // per pixel; 0: one ray through the centre (no NumSamples)
     uint64_t seed = kDefaultSeed;
     bool timed = false;  // some shape moves: each sample draws a time
+    int grid = 0;        // n when samples is a square n^2 > 1 (stratified), else 0
 };
 
 // The sampling of camera `camera` of `scene` under `seed` (its NumSamples, or --samples,
