@@ -264,8 +264,10 @@ TEST(PixelSamples, SquareCountsAreStratifiedOnePerCell) {
         cells.insert({int(c.dx * 4), int(c.dy * 4)});
     }
     EXPECT_EQ(cells.size(), 16u);
-    // Without samples: the centre ray, and no lens.
+    // Without samples, through a pinhole: the centre ray, as before assignment 3.
     s.samples = 0;
+    s.grid = 0;
+    cam.aperture = 0;
     const rt::CameraSample centre = rt::camera_sample(cam, s, 2, 2, 0);
     EXPECT_EQ(centre.dx, Real(0.5));
     const rt::Ray want = cam.primary_ray(2, 2);

@@ -552,3 +552,53 @@ TEST(Trace, AnInstanceHitNamesItsMeshFaceAndTheObjectSpacePoint) {
     // The mesh itself (moved by t1 three times, to z = 6, behind the camera) is not hit.
     EXPECT_EQ(run.out.find("hit Mesh 3"), std::string::npos) << dump(run);
 }
+
+// ---- Distribution ray tracing: one sample of a pixel -----------------------------------
+
+// A rough mirror floor under an area light, seen through a lens at 9 samples, with a
+// moving sphere: --trace X,Y --sample K shows sample K (its point in the pixel, on the lens,
+// its time, the area light's point drawn, the rough reflection's ideal direction), and the
+// pixel is the mean of all 9, which the image holds.
+TEST(Trace, ASampleShowsItsLensTimeLightPointAndRoughDirection) {
+    TempDir tmp;
+    std::ofstream(tmp / "d.json") << R"({"Scene": {"MaxRecursionDepth": "2",
+      "Cameras": {"Camera": {"Position": "0 1 4", "Gaze": "0 -0.3 -1", "Up": "0 1 0",
+        "NearPlane": "-1 1 -1 1", "NearDistance": "1", "ImageResolution": "8 8", "NumSamples": "9",
+        "FocusDistance": "4", "ApertureSize": "0.2", "ImageName": "d.png"}},
+      "Lights": {"AmbientLight": "5 5 5", "AreaLight": {"Position": "0 3 0", "Normal": "0 -1 0", "Size": "1",
+        "Radiance": "500 500 500"}},
+      "Materials": {"Material": [{"_id": "1", "AmbientReflectance": "1 1 1", "DiffuseReflectance": "0.5 0.5 0.5"},
+        {"_id": "2", "_type": "mirror", "DiffuseReflectance": "0.2 0.2 0.2", "MirrorReflectance": "0.5 0.5 0.5",
+         "Roughness": "0.3"}]},
+      "VertexData": {"_data": "-9 0 -9  9 0 -9  9 0 9  -9 0 9  0 0.5 -1"},
+      "Objects": {"Mesh": {"Material": "2", "Faces": {"_data": "1 3 2 1 4 3"}},
+        "Sphere": {"Material": "1", "Center": "5", "Radius": "0.5", "MotionBlur": "0.5 0 0"}}}})";
+    const RunResult img = run_raytracer({"-q", "-o", tmp / "out", tmp / "d.json"});
+    ASSERT_EQ(img.exit_code, 0) << dump(img);
+    rt::Image rendered;
+    ASSERT_TRUE(load_png(tmp / "out/d.png", rendered));
+    for (const char* k : {"0", "8"}) {
+        const Traced t = trace_run(tmp / "d.json", "4,6", tmp / "t.json", {"--sample", k});
+        ASSERT_EQ(t.run.exit_code, 0) << dump(t.run);
+        EXPECT_TRUE(contains(t.run.out, std::string("sample ") + k + " of 9 (--sample, seed 0)")) << t.run.out;
+        EXPECT_TRUE(contains(t.run.out, "lens point (")) << t.run.out;
+        EXPECT_TRUE(contains(t.run.out, ", time ")) << t.run.out;
+        EXPECT_TRUE(contains(t.run.out, "light 1 (area): point drawn (")) << t.run.out;
+        EXPECT_TRUE(contains(t.run.out, "turned from the ideal direction")) << t.run.out;
+        EXPECT_TRUE(contains(t.run.out, "the mean of its 9 samples")) << t.run.out;
+        const json& s = t.doc["sample"];
+        ASSERT_TRUE(s.is_object()) << t.doc.dump();
+        EXPECT_EQ(s["index"].get<int>(), std::atoi(k));
+        EXPECT_EQ(s["lens"].size(), 2u);
+        const std::vector<uint8_t> px = t.doc["pixel"].get<std::vector<uint8_t>>();
+        EXPECT_EQ(px, pixel_of(rendered, 4, 6)) << "the trace's pixel is the image's, whichever sample is shown";
+    }
+    // Two samples differ in where they fall.
+    const Traced a = trace_run(tmp / "d.json", "4,6", tmp / "a.json", {"--sample", "0"});
+    const Traced b = trace_run(tmp / "d.json", "4,6", tmp / "b.json", {"--sample", "5"});
+    EXPECT_NE(a.doc["sample"]["pixel_offset"], b.doc["sample"]["pixel_offset"]);
+    // A sample the camera does not take is a usage error.
+    const RunResult bad = run_raytracer({"--trace", "4,6", "--sample", "9", tmp / "d.json"});
+    EXPECT_EQ(bad.exit_code, 2) << dump(bad);
+    EXPECT_TRUE(contains(bad.err, "--sample 9: camera 1 takes 9 samples per pixel (0..8)")) << dump(bad);
+}
