@@ -180,7 +180,7 @@ std::string rays_text(const Camera& cam, const ImageRecord& r) {
         return std::string(buf);
     };
     const double rays = double(r.render_stats.rays.total());
-    return (cam.samples > 0 ? std::to_string(cam.samples) + " samples/pixel, " : std::string()) + metric(rays) +
+    return (cam.samples > 0 ? count_of(size_t(cam.samples), "sample") + " per pixel, " : std::string()) + metric(rays) +
            " rays, " + metric(r.render.median > 0 ? rays / r.render.median : 0) + " rays/s";
 }
 
