@@ -105,21 +105,6 @@ Imported import(const TempDir& tmp, const std::string& gltf, rt::ConvertOptions 
     return im;
 }
 
-std::string error_of(const std::string& in, const std::string& out) {
-    try {
-        rt::convert_file(in, out);
-    } catch (const rt::InputError& e) {
-        return e.what();
-    }
-    return "";
-}
-
-bool any_contains(const std::vector<std::string>& lines, const std::string& part) {
-    for (const std::string& l : lines)
-        if (contains(l, part)) return true;
-    return false;
-}
-
 }  // namespace
 
 // ---- The material table ---------------------------------------------------------------

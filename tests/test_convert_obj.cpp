@@ -57,12 +57,6 @@ size_t triangle_count(const rt::SceneDesc& d) {
     return n;
 }
 
-bool any_contains(const std::vector<std::string>& lines, const std::string& part) {
-    for (const std::string& l : lines)
-        if (contains(l, part)) return true;
-    return false;
-}
-
 // A triangle of mesh m as points.
 std::array<rt::Vec3, 3> tri(const rt::MeshDesc& m, size_t t) {
     return {m.positions[m.indices[3 * t]], m.positions[m.indices[3 * t + 1]], m.positions[m.indices[3 * t + 2]]};

@@ -2,7 +2,8 @@
 // XML -> JSON and JSON -> XML, loads to the same SceneDesc field by field (the JSON a fixed
 // point of XML -> JSON -> XML -> JSON), PLY files keep their place when the converted
 // file lands in another folder, and an official PLY scene goes round through the command
-// line. Also: every scene of our own (scenes/) loads without warnings and renders.
+// line; assignment 3's scenes through XML and glTF render byte-identical images. Also:
+// every scene of our own (scenes/) loads without warnings and renders.
 #include <gtest/gtest.h>
 
 // A build without pugixml or tinyobjloader (see mk/convert.mk) has none of this to test.
@@ -107,6 +108,13 @@ std::string canonical(const std::string& path) {
             !same(a.all<rt::PlaneDesc>()[i].point, b.all<rt::PlaneDesc>()[i].point) ||
             !same(a.all<rt::PlaneDesc>()[i].normal, b.all<rt::PlaneDesc>()[i].normal))
             differ("plane " + std::to_string(i));
+    const std::vector<rt::InstanceDesc>&ia = a.all<rt::InstanceDesc>(), &ib = b.all<rt::InstanceDesc>();
+    if (ia.size() != ib.size()) differ("instance count");
+    for (size_t i = 0; i < std::min(ia.size(), ib.size()); ++i)
+        if (ia[i].mesh != ib[i].mesh || ia[i].material != ib[i].material ||
+            !std::equal(&ia[i].transform.m[0][0], &ia[i].transform.m[0][0] + 12, &ib[i].transform.m[0][0]))
+            differ("instance " + std::to_string(i));
+    why << distribution_differences(a, b);
     if (why.str().empty()) return ::testing::AssertionSuccess();
     return ::testing::AssertionFailure() << why.str();
 }
@@ -137,9 +145,53 @@ std::vector<std::string> official_scenes(const std::string& sub, const std::stri
     return out;
 }
 
+// The scenes of an assignment's manifest whose inputs are complete, each once.
+std::vector<std::string> complete_scenes(const std::string& hw) {
+    const std::string dir = shared_dir() + "/scenes/" + hw;
+    std::vector<std::string> out;
+    for (const std::string& line : split_lines(read_text(dir + "/MANIFEST.tsv"))) {
+        std::vector<std::string> cols;
+        std::istringstream fields(line);
+        for (std::string c; std::getline(fields, c, '\t');) cols.push_back(c);
+        if (!line.empty() && line[0] != '#' && cols.size() >= 4 && cols[3].rfind("complete", 0) == 0 &&
+            std::find(out.begin(), out.end(), dir + "/" + cols[0]) == out.end())
+            out.push_back(dir + "/" + cols[0]);
+    }
+    return out;
+}
+
 }  // namespace
 
 // ---- Round trips of the official scenes ------------------------------------------------
+
+// Assignment 3's elements (NumSamples, the lens, area lights, MotionBlur, Roughness) through
+// glTF (.gltf and .glb in turn) and through XML: the same values, exactly, and the same
+// images, byte for byte.
+TEST(ConvertRoundTrip, EveryCompleteHw3SceneThroughGltfAndXml) {
+    SKIP_UNLESS_SHARED("assignment 3's scenes");
+    const std::vector<std::string> scenes = complete_scenes("hw3");
+    EXPECT_GE(scenes.size(), 8u);
+    for (size_t i = 0; i < scenes.size(); ++i) {
+        const std::string& path = scenes[i];
+        SCOPED_TRACE(path);
+        TempDir tmp;
+        const rt::SceneDesc a = rt::load_scene(path);
+        rt::convert_file(path, tmp / "s.xml");
+        const rt::SceneDesc x = rt::load_scene(tmp / "s.xml");
+        EXPECT_TRUE(same_scene(a, x, false));
+        EXPECT_TRUE(same_images(a, x, 4));
+#ifndef RT_NO_GLTF
+        const std::string gltf = tmp / (i % 2 ? "s.glb" : "s.gltf");
+        rt::convert_file(path, gltf);
+        rt::ConvertOptions all;
+        all.camera = 0;
+        rt::convert_file(gltf, tmp / "back.json", all);
+        const rt::SceneDesc g = rt::load_scene(tmp / "back.json");
+        EXPECT_EQ(distribution_differences(a, g), "");
+        EXPECT_TRUE(same_images(a, g, 4));
+#endif
+    }
+}
 
 TEST(ConvertRoundTrip, EveryOfficialJsonSceneThroughXml) {
     SKIP_UNLESS_SHARED("the official JSON scenes");

@@ -59,7 +59,7 @@ TEST(DistributionLoader, ReadsEveryNewElement) {
     j["Scene"]["Cameras"]["Camera"]["FocusDistance"] = "4.5";
     j["Scene"]["Cameras"]["Camera"]["ApertureSize"] = "0.25";
     j["Scene"]["Lights"]["AreaLight"] = area_light();
-    j["Scene"]["Lights"]["AreaLight"]["Normal"] = "0 -3 0";  // normalised
+    j["Scene"]["Lights"]["AreaLight"]["Normal"] = "0 -3 0";  // kept as written; the build normalises it
     j["Scene"]["Objects"]["Sphere"]["MotionBlur"] = "1 2 3";
     j["Scene"]["Objects"]["Mesh"]["MotionBlur"] = "0 0 -1";
     j["Scene"]["Materials"]["Material"]["_type"] = "mirror";
@@ -71,7 +71,7 @@ TEST(DistributionLoader, ReadsEveryNewElement) {
     EXPECT_DOUBLE_EQ(d.cameras[0].focus_distance, 4.5);
     EXPECT_DOUBLE_EQ(d.cameras[0].aperture_size, 0.25);
     ASSERT_EQ(d.area_lights.size(), 1u);
-    EXPECT_DOUBLE_EQ(d.area_lights[0].normal.y, -1);
+    EXPECT_DOUBLE_EQ(d.area_lights[0].normal.y, -3);
     EXPECT_DOUBLE_EQ(d.area_lights[0].size, 2);
     EXPECT_DOUBLE_EQ(d.area_lights[0].radiance.x, 10);
     EXPECT_DOUBLE_EQ(d.all<rt::SphereDesc>()[0].motion.z, 3);
@@ -79,6 +79,9 @@ TEST(DistributionLoader, ReadsEveryNewElement) {
     EXPECT_TRUE(d.meshes[0].instanced) << "a moving mesh is drawn as an instance of itself";
     EXPECT_DOUBLE_EQ(d.materials[0].roughness, Real(0.3));
     EXPECT_TRUE(d.warnings.empty()) << d.warnings.front();
+    const rt::Scene s = rt::build_scene(d);
+    ASSERT_EQ(s.setup.lights.size(), 2u);
+    EXPECT_DOUBLE_EQ(s.setup.lights[1].normal.y, -1);  // normalised by the build
 }
 
 TEST(DistributionLoader, CameraWithoutNumSamplesHasNone) {

@@ -1,16 +1,19 @@
 // A loaded scene as glTF 2.0 (docs/gltf.md): each mesh, triangle, sphere (tessellated)
 // and plane (a large quad) a node, instances nodes sharing their mesh's accessors,
 // Transformations node matrices, cameras and point lights (KHR_lights_punctual) nodes,
-// materials by the table of gltf_materials.h. What glTF cannot hold exactly (the
-// course's material values, a camera's near plane and image, the scene's settings,
-// positions that are not floats, the exact sphere or plane behind a tessellation) goes
-// into "ceng795" extras, which the import uses while they agree with the glTF values.
+// area lights nodes of their own, materials by the table of gltf_materials.h. What glTF
+// cannot hold exactly (the course's material values, a camera's near plane and image, the
+// scene's settings, positions that are not floats, the exact sphere or plane behind a
+// tessellation, an area light's place) goes into "ceng795" extras, which the import uses
+// while they agree with the glTF values; what glTF has no place for at all (samples,
+// lens, radiance, motion, Roughness) into those of gltf_extras.h.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <map>
 
+#include "gltf_extras.h"
 #include "gltf_io.h"
 #include "rt/convert/convert.h"
 #include "rt/convert/gltf_materials.h"
@@ -148,6 +151,14 @@ std::vector<double> node_matrix(const Affine& m) {
     return out;
 }
 
+// The rotation taking a node's -z axis (where glTF's lights point) to `n`, a unit vector,
+// as a unit quaternion x y z w: the shortest arc, or a half turn about x when n is +z.
+std::vector<double> rotation_to(const Vec3& n) {
+    if (!(n.z < 1)) return {1, 0, 0, 0};
+    const double x = n.y, y = -n.x, w = 1 - n.z, l = std::sqrt(x * x + y * y + w * w);
+    return {x / l, y / l, 0, w / l};
+}
+
 // The rotation taking glTF's camera frame (looking down -z, +y up) to the camera's
 // (spec 2.1: w = -gaze, u = up x w, v = w x u), as a unit quaternion x y z w.
 std::vector<double> camera_rotation(const CameraDesc& c) {
@@ -196,6 +207,7 @@ public:
         add_shapes();
         add_cameras();
         add_lights();
+        add_area_lights();
         for (size_t i = 0; i < model_.nodes.size(); ++i) model_.scenes[0].nodes.push_back(int(i));
     }
 
@@ -221,7 +233,9 @@ private:
                                   {"attenuationColor", {p.attenuation[0], p.attenuation[1], p.attenuation[2]}}});
                 }
             }
-            g.extras = ours_as_extras(material_extras(m));
+            json extras = material_extras(m);
+            extras.update(extras_of(kMaterialExtras, m));
+            g.extras = ours_as_extras(extras);
             model_.materials.push_back(std::move(g));
         }
         if (transmission) model_.extensionsUsed.push_back("KHR_materials_transmission");
@@ -249,11 +263,13 @@ private:
         return meshes_[key];
     }
 
-    void add_node(const std::string& name, int mesh, const Affine& transform) {
+    // A node showing `mesh`; `motion` its object's MotionBlur.
+    void add_node(const std::string& name, int mesh, const Affine& transform, const Vec3& motion) {
         tinygltf::Node n;
         n.name = name;
         n.mesh = mesh;
         n.matrix = node_matrix(transform);
+        if (const json extras = extras_of(kMotionExtras, motion); !extras.empty()) n.extras = ours_as_extras(extras);
         model_.nodes.push_back(std::move(n));
     }
 
@@ -265,7 +281,7 @@ private:
             geometries_.push_back(
                 add_geometry(buffers_, m.positions, m.indices, m.shading == ShadingMode::Smooth, true));
             const std::string name = std::string(m.triangle_object ? "Triangle " : "Mesh ") + m.id;
-            if (!m.instanced) add_node(name, mesh_of(i, m.material, name), Affine{});
+            if (!m.instanced) add_node(name, mesh_of(i, m.material, name), Affine{}, m.motion);
         }
     }
 
@@ -286,7 +302,7 @@ private:
             const MeshDesc& m = scene_.meshes.at(d.mesh);
             const std::string name = std::string(d.key ? d.key : InstanceDesc::kKey) + " " + d.id;
             add_node(name, mesh_of(d.mesh, d.material, std::string(m.triangle_object ? "Triangle " : "Mesh ") + m.id),
-                     d.transform);
+                     d.transform, d.motion);
         }
     }
 
@@ -298,7 +314,7 @@ private:
             geometries_.push_back(add_geometry(buffers_, poly.vertices, triangles_of(poly), true, false));
             geometries_.back().extras["sphere"] = {{"center", arr(d.center)}, {"radius", double(d.radius)}};
             const std::string name = "Sphere " + d.id;
-            add_node(name, mesh_of(geometries_.size() - 1, d.material, name), d.transform);
+            add_node(name, mesh_of(geometries_.size() - 1, d.material, name), d.transform, d.motion);
         }
         if (!scene_.all<SphereDesc>().empty())
             result_.notes.push_back(count_of(scene_.all<SphereDesc>().size(), SphereDesc::kNoun, SphereDesc::kNouns) +
@@ -311,7 +327,7 @@ private:
             geometries_.push_back(add_geometry(buffers_, poly.vertices, triangles_of(poly), false, false));
             geometries_.back().extras["plane"] = {{"point", arr(d.point)}, {"normal", arr(d.normal)}};
             const std::string name = "Plane " + d.id;
-            add_node(name, mesh_of(geometries_.size() - 1, d.material, name), Affine{});
+            add_node(name, mesh_of(geometries_.size() - 1, d.material, name), Affine{}, d.motion);
         }
         if (!scene_.all<PlaneDesc>().empty())
             result_.notes.push_back(count_of(scene_.all<PlaneDesc>().size(), PlaneDesc::kNoun, PlaneDesc::kNouns) +
@@ -333,6 +349,7 @@ private:
                 result_.warnings.push_back(scene_.path + ": " + where +
                                            ": its near plane is off-centre; glTF keeps its vertical field of view "
                                            "only (the exact camera is in the extras)");
+            if (const json lens = extras_of(kCameraExtras, c); !lens.empty()) g.extras = ours_as_extras(lens);
             model_.cameras.push_back(g);
             tinygltf::Node n;
             n.name = g.name;
@@ -373,6 +390,25 @@ private:
         if (!scene_.point_lights.empty()) model_.extensionsUsed.push_back("KHR_lights_punctual");
         if (scene_.ambient_light.x > 0 || scene_.ambient_light.y > 0 || scene_.ambient_light.z > 0)
             result_.notes.push_back("ambient light: glTF has none; kept in the scene's extras");
+    }
+
+    // glTF has no area lights: each is a node of its own, centred at its Position, its -z
+    // axis along its Normal, scaled by its Size (a modelling tool shows, moves and turns
+    // it), and its values, Radiance too, in the node's extras.
+    void add_area_lights() {
+        for (size_t i = 0; i < scene_.area_lights.size(); ++i) {
+            const AreaLightDesc& l = scene_.area_lights[i];
+            tinygltf::Node n;
+            n.name = "AreaLight " + std::to_string(i + 1);
+            n.translation = {double(l.position.x), double(l.position.y), double(l.position.z)};
+            n.rotation = rotation_to(normalize(l.normal));
+            n.scale = {double(l.size), double(l.size), double(l.size)};
+            n.extras = ours_as_extras({{"areaLight", extras_of(kAreaLightExtras, l)}});
+            model_.nodes.push_back(std::move(n));
+        }
+        if (!scene_.area_lights.empty())
+            result_.notes.push_back(count_of(scene_.area_lights.size(), "area light") +
+                                    ": glTF has none; nodes of their own, their values in the extras");
     }
 
     const SceneDesc& scene_;

@@ -2,7 +2,9 @@
 // PLY per accessor pair, further uses MeshInstances of the first), the node hierarchy
 // Composite transformations, perspective cameras and KHR_lights_punctual point lights
 // the scene's, materials by the table of gltf_materials.h (gltf_import_materials.cpp). "ceng795"
-// extras written by the export are used where they still agree with what the glTF says.
+// extras written by the export are used where they still agree with what the glTF says;
+// those glTF has no place for (gltf_extras.h: samples, lens, area lights, motion,
+// Roughness) are checked and used as they are.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -10,6 +12,7 @@
 #include <map>
 #include <set>
 
+#include "gltf_extras.h"
 #include "gltf_import.h"
 #include "gltf_io.h"
 #include "gltf_primitives.h"
@@ -92,6 +95,10 @@ private:
     [[noreturn]] void fail(const std::string& element, const std::string& what) const {
         throw InputError(path_ + ": " + (element.empty() ? "" : element + ": ") + what);
     }
+    // The file and an element's "ceng795" extras, as read_extras names them.
+    std::string extras_at(const std::string& element) const {
+        return path_ + ": " + element + "/extras/" + kGltfExtrasKey;
+    }
     void warn(const std::string& what) { out_.warnings.push_back(path_ + ": " + what); }
 
     // ---- Nodes ----------------------------------------------------------------------
@@ -166,11 +173,15 @@ private:
             return;
         }
         if (!locals_[size_t(index)].is_identity()) chain.insert(chain.begin(), index);
+        const json extras = ours_in(n.extras);
         if (n.mesh >= 0) {
             if (size_t(n.mesh) >= model_.meshes.size())
                 fail(np + "/mesh", "mesh " + std::to_string(n.mesh) + " does not exist");
-            add_mesh(n.mesh, world, chain);
+            ojson motion = ojson::object();  // the objects' own keys: MotionBlur
+            read_extras(kMotionExtras, extras, extras_at(np), false, motion);
+            add_mesh(n.mesh, world, chain, motion, np);
         }
+        if (extras.is_object() && extras.contains("areaLight")) add_area_light(extras["areaLight"], np, world);
         if (n.camera >= 0) {
             if (size_t(n.camera) >= model_.cameras.size())
                 fail(np + "/camera", "camera " + std::to_string(n.camera) + " does not exist");
@@ -224,7 +235,8 @@ private:
         ++vertices_;
     }
 
-    void add_mesh(int m, const Affine& world, const std::vector<int>& nodes) {
+    // The objects node `np` shows (`own`: the keys each of them takes from the node).
+    void add_mesh(int m, const Affine& world, const std::vector<int>& nodes, const ojson& own, const std::string& np) {
         const tinygltf::Mesh& mesh = model_.meshes[size_t(m)];
         const json extras = ours_in(mesh.extras);
         for (size_t p = 0; p < mesh.primitives.size(); ++p) {
@@ -235,7 +247,7 @@ private:
             for (int c = 0; c < 8; ++c)  // the corners of its box, moved
                 extent(apply(
                     world, {(c & 1 ? g->hi : g->lo)[0], (c & 2 ? g->hi : g->lo)[1], (c & 4 ? g->hi : g->lo)[2]}, true));
-            if (mesh.primitives.size() == 1 && as_shape(*g, extras, world, nodes, material)) continue;
+            if (mesh.primitives.size() == 1 && as_shape(*g, extras, world, nodes, material, own, np)) continue;
             ojson o = ojson::object();
             if (options_.bake_transforms) {
                 ImportedMesh baked;
@@ -252,6 +264,7 @@ private:
                 o["_shadingMode"] = g->smooth ? "smooth" : "flat";
                 o["Material"] = material;
                 o["Faces"] = {{"_plyFile", baked.ply_name}};
+                o.update(own);
                 out_.meshes.push_back(std::move(baked));
                 mesh_objects_.push_back(o);
                 continue;
@@ -271,12 +284,14 @@ private:
                 o["Material"] = material;
                 if (!chain.empty()) o["Transformations"] = chain;
                 o["Faces"] = {{"_plyFile", out_.meshes[first.ply].ply_name}};
+                o.update(own);
                 mesh_objects_.push_back(o);
             } else {  // another use: an instance of the first, under its own matrix
                 o["_baseMeshId"] = std::to_string(first.base);
                 o["_resetTransform"] = "true";
                 o["Material"] = material;
                 if (!chain.empty()) o["Transformations"] = chain;
+                o.update(own);
                 instance_objects_.push_back(o);
             }
         }
@@ -285,7 +300,7 @@ private:
     // A tessellated sphere or plane of the export, back as itself while its vertices are
     // still on it (docs/gltf.md).
     bool as_shape(const GltfTriangles& g, const json& extras, const Affine& world, const std::vector<int>& nodes,
-                  const std::string& material) {
+                  const std::string& material, const ojson& own, const std::string& np) {
         if (!extras.is_object()) return false;
         const size_t n = g.positions.size() / 3;
         if (extras.contains("sphere") && n >= 4) {
@@ -305,6 +320,7 @@ private:
             o["Center"] = std::to_string(vertices_);
             o["Radius"] = course_number(r);
             if (!nodes.empty()) o["Transformations"] = transformations(nodes);
+            o.update(own);
             sphere_objects_.push_back(o);
             return true;
         }
@@ -340,6 +356,8 @@ private:
             add_vertex(p);
             o["Point"] = std::to_string(vertices_);
             o["Normal"] = course_vec(nrm);
+            if (!own.empty())
+                warn(np + "/extras/" + kGltfExtrasKey + "/motionBlur: a plane does not move in the format: left out");
             plane_objects_.push_back(o);
             return true;
         }
@@ -386,6 +404,35 @@ private:
         o["Intensity"] = course_vec(intensity);
         lights_.push_back(o);
         extent(apply(world, {0, 0, 0}, true));
+    }
+
+    // An area light's node (docs/gltf.md): its values from its extras, its place from the
+    // extras while the node still puts it there (origin, -z axis, the side of the square its
+    // x and y axes span), else from the node.
+    void add_area_light(const json& e, const std::string& np, const Affine& world) {
+        const std::string where = extras_at(np) + "/areaLight";
+        if (!e.is_object()) throw InputError(where + ": must be an object");
+        ojson o = ojson::object();
+        o["_id"] = std::to_string(area_lights_.size() + 1);
+        read_extras(kAreaLightExtras, e, where, true, o);
+        const V3 origin = apply(world, {0, 0, 0}, true), axis = apply(world, {0, 0, -1}, false),
+                 x = apply(world, {1, 0, 0}, false), y = apply(world, {0, 1, 0}, false);
+        const double side =
+            std::sqrt(norm({x[1] * y[2] - x[2] * y[1], x[2] * y[0] - x[0] * y[2], x[0] * y[1] - x[1] * y[0]}));
+        const V3 p = e["position"].get<V3>(), n = e["normal"].get<V3>();  // checked above
+        const double size = e["size"].get<double>();
+        const double cos_n = (n[0] * axis[0] + n[1] * axis[1] + n[2] * axis[2]) / (norm(n) * norm(axis));
+        const bool placed = norm(sub(p, origin)) <= 1e-5 * std::max(1.0, norm(p)) && cos_n > 1 - 1e-8 &&
+                            std::fabs(side - size) <= 1e-5 * size;
+        if (!placed) {
+            o["Position"] = course_vec(origin);
+            o["Normal"] = course_vec({axis[0] / norm(axis), axis[1] / norm(axis), axis[2] / norm(axis)});
+            o["Size"] = course_number(side);
+        }
+        out_.notes.push_back("area light " + o["_id"].get<std::string>() + ": " +
+                             (placed ? "the exported values" : "placed by its node " + np));
+        area_lights_.push_back(o);
+        extent(origin);
     }
 
     bool bounds_empty() const { return !(lo_[0] <= hi_[0]); }
@@ -501,6 +548,11 @@ private:
         o["NearDistance"] = course_number(distance);
         o["ImageResolution"] = std::to_string(width) + " " + std::to_string(height);
         o["ImageName"] = name;
+        // Its samples and lens, which glTF has no place for.
+        const json lens = ours_in(c.extras);
+        read_extras(kCameraExtras, lens, extras_at(cp), false, o);
+        if (o.contains("ApertureSize") && lens.at("apertureSize").get<double>() > 0 && !o.contains("FocusDistance"))
+            fail(cp + "/extras/" + kGltfExtrasKey + "/apertureSize", "a lens (above 0) needs a focusDistance");
         out_.notes.push_back("camera " + std::to_string(u.camera + 1) + " (" + (c.name.empty() ? "unnamed" : c.name) +
                              ") -> " + std::to_string(width) + "x" + std::to_string(height) + " " + name);
         return o;
@@ -511,14 +563,15 @@ private:
         V3 ambient{0, 0, 0};
         const bool have_ambient =
             scene_extras_.is_object() && colour(scene_extras_.value("ambientLight", json()), ambient);
-        if (lights_.empty()) {
+        if (lights_.empty() && area_lights_.empty()) {
             l = frame(options_.width, options_.height, "").lights;
             if (have_ambient) l["AmbientLight"] = course_vec(ambient);
             out_.notes.push_back("lights: the default lights (the file has no point light)");
             return l;
         }
         l["AmbientLight"] = course_vec(ambient);
-        l["PointLight"] = lights_;
+        if (!lights_.empty()) l["PointLight"] = lights_;
+        if (!area_lights_.empty()) l["AreaLight"] = area_lights_;
         return l;
     }
 
@@ -554,7 +607,8 @@ private:
     std::vector<CameraUse> camera_uses_;
     json scene_extras_;
     ojson transforms_ = ojson::array(), mesh_objects_ = ojson::array(), instance_objects_ = ojson::array(),
-          sphere_objects_ = ojson::array(), plane_objects_ = ojson::array(), lights_ = ojson::array();
+          sphere_objects_ = ojson::array(), plane_objects_ = ojson::array(), lights_ = ojson::array(),
+          area_lights_ = ojson::array();
     std::string vertex_data_;
     size_t vertices_ = 0;
     int object_ids_ = 0;  // Mesh and MeshInstance share one id space

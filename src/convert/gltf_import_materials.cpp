@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "gltf_extras.h"
 #include "gltf_import.h"
 #include "rt/convert/gltf_materials.h"
 
@@ -63,7 +64,10 @@ ojson import_materials(const tinygltf::Model& model, const std::string& path, bo
         MaterialDesc exact;
         const bool from_extras = material_from_extras(ours_in(m.extras), exact) && same_pbr(pbr_of(exact), p);
         const MaterialDesc d = from_extras ? exact : material_of(p);
-        list.push_back(material_entry(d, i + 1));
+        ojson entry = material_entry(d, i + 1);
+        // Roughness, which glTF has no place for: kept through edits of the PBR values.
+        read_extras(kMaterialExtras, ours_in(m.extras), path + ": " + mp + "/extras/" + kGltfExtrasKey, false, entry);
+        list.push_back(std::move(entry));
         out.notes.push_back("material " + std::to_string(i + 1) + " (" + (m.name.empty() ? "unnamed" : m.name) +
                             "): " + material_type_name(d.type) +
                             (from_extras ? ", the exported course values" : ", from its PBR values"));

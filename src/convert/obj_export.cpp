@@ -59,9 +59,10 @@ public:
         for (uint32_t i : local) text += " " + std::to_string(base + i + 1);
         text += "\n";
     }
-    void object(const std::string& name, uint32_t material, bool smooth) {
-        text +=
-            "o " + name + "\nusemtl material_" + std::to_string(material + 1) + "\ns " + (smooth ? "1" : "off") + "\n";
+    void object(const std::string& name, uint32_t material, bool smooth, const Vec3& motion) {
+        text += "o " + name + "\n";
+        if (!is_still(motion)) text += "# MotionBlur " + vec(motion) + "\n";
+        text += "usemtl material_" + std::to_string(material + 1) + "\ns " + (smooth ? "1" : "off") + "\n";
     }
 };
 
@@ -70,7 +71,7 @@ std::string mtl_material(const MaterialDesc& m, size_t index) {
     s += std::string("# ") + material_type_name(m.type) + "; exact values: Ks " + vec(m.specular) +
          ", MirrorReflectance " + vec(m.mirror) + ", RefractionIndex " + num(m.refraction_index) +
          ", AbsorptionIndex " + num(m.absorption_index) + ", AbsorptionCoefficient " + vec(m.absorption_coefficient) +
-         "\n";
+         ", Roughness " + num(m.roughness) + "\n";
     s += "Ka " + vec(m.ambient) + "\n";
     s += "Kd " + vec(m.diffuse) + "\n";
     MtlLines lines{s};  // the kind's own lines (rt/materials/)
@@ -105,15 +106,24 @@ ObjText scene_to_obj(const SceneDesc& scene, const std::string& mtl_file_name, i
     for (size_t i = 0; i < scene.cameras.size(); ++i) {
         const CameraDesc& c = scene.cameras[i];
         w.text += "# camera " + std::to_string(i + 1) + ": position " + vec(c.position) + ", gaze " + vec(c.gaze) +
-                  ", up " + vec(c.up) + ", image " + c.image_name + "\n";
+                  ", up " + vec(c.up) + ", image " + c.image_name;
+        if (c.num_samples > 0) w.text += ", NumSamples " + std::to_string(c.num_samples);
+        if (c.aperture_size > 0 || c.focus_distance > 0)
+            w.text += ", ApertureSize " + num(c.aperture_size) + ", FocusDistance " + num(c.focus_distance);
+        w.text += "\n";
     }
     for (size_t i = 0; i < scene.point_lights.size(); ++i)
         w.text += "# point light " + std::to_string(i + 1) + ": position " + vec(scene.point_lights[i].position) +
                   ", intensity " + vec(scene.point_lights[i].intensity) + "\n";
+    for (size_t i = 0; i < scene.area_lights.size(); ++i) {
+        const AreaLightDesc& l = scene.area_lights[i];
+        w.text += "# area light " + std::to_string(i + 1) + ": position " + vec(l.position) + ", normal " +
+                  vec(l.normal) + ", size " + num(l.size) + ", radiance " + vec(l.radiance) + "\n";
+    }
     w.text += "mtllib " + mtl_file_name + "\n";
 
-    auto write = [&w](const std::string& name, uint32_t material, const Polygons& poly) {
-        w.object(name, material, poly.smooth);
+    auto write = [&w](const std::string& name, uint32_t material, const Polygons& poly, const Vec3& motion) {
+        w.object(name, material, poly.smooth, motion);
         const size_t base = w.vertices;
         for (const Vec3& v : poly.vertices) w.vertex(v);
         for (const std::vector<uint32_t>& f : poly.faces) w.face(f, base);
@@ -121,7 +131,7 @@ ObjText scene_to_obj(const SceneDesc& scene, const std::string& mtl_file_name, i
     // A mesh an instance shows is written as the instance of itself (rt/shapes/instance.h).
     for (size_t i = 0; i < scene.meshes.size(); ++i) {
         const MeshDesc& m = scene.meshes[i];
-        if (!m.instanced) write("mesh_" + std::to_string(i + 1), m.material, mesh_polygons(m, m.transform));
+        if (!m.instanced) write("mesh_" + std::to_string(i + 1), m.material, mesh_polygons(m, m.transform), m.motion);
     }
 
     // The other kinds (rt/shapes/shapes.h) as their polygons.
@@ -131,7 +141,7 @@ ObjText scene_to_obj(const SceneDesc& scene, const std::string& mtl_file_name, i
         const std::vector<typename S::Desc>& list = scene.all<typename S::Desc>();
         for (size_t i = 0; i < list.size(); ++i)
             write(std::string(S::Desc::kNoun) + "_" + std::to_string(i + 1), list[i].material,
-                  S::polygons(list[i], frame));
+                  S::polygons(list[i], frame), list[i].motion);
     });
     out.obj = std::move(w.text);
 

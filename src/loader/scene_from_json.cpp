@@ -386,7 +386,7 @@ private:
             check_keys(l, path + "/AreaLight", {"_id", "Position", "Normal", "Size", "Radiance"});
             AreaLightDesc a;
             a.position = vec3(require(l, lp, "Position"), lp + "/Position");
-            a.normal = normalize(nonzero_vec3(require(l, lp, "Normal"), lp + "/Normal"));
+            a.normal = nonzero_vec3(require(l, lp, "Normal"), lp + "/Normal");
             a.size = positive(require(l, lp, "Size"), lp + "/Size");
             a.radiance = color(require(l, lp, "Radiance"), lp + "/Radiance");
             out_.area_lights.push_back(a);

@@ -241,7 +241,7 @@ Scene build(SceneDesc& d, const BvhBuildOptions& bvh, MeshCache* cache) {
     setup.lights.reserve(d.point_lights.size() + d.area_lights.size());
     for (const PointLightDesc& l : d.point_lights) setup.lights.push_back(Light::point(l.position, l.intensity));
     for (const AreaLightDesc& l : d.area_lights)
-        setup.lights.push_back(Light::square(l.position, l.normal, l.size, l.radiance));
+        setup.lights.push_back(Light::square(l.position, normalize(l.normal), l.size, l.radiance));
     setup.materials.reserve(d.materials.size());
     for (const MaterialDesc& m : d.materials) setup.materials.push_back(make_material(m));
 

@@ -28,7 +28,8 @@ struct PointLightDesc {
 };
 
 // Lights/AreaLight: a square emitter of side `size` about `position`, facing along
-// `normal` (unit length); `radiance` per unit area and solid angle (docs/conventions.md,
+// `normal` (non-zero, as written: the build normalises it, so that a conversion writes
+// back the file's own); `radiance` per unit area and solid angle (docs/conventions.md,
 // "Area lights").
 struct AreaLightDesc {
     Vec3 position, normal, radiance;
