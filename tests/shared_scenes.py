@@ -21,10 +21,10 @@ def shared_dir():
     return d if os.path.isdir(os.path.join(d, "scenes")) else ""
 
 
-def complete_scenes(shared):
-    """(assignment, path relative to its scene folder) of every complete scene."""
+def complete_scenes(shared, assignments=("hw1", "hw2")):
+    """(assignment, path relative to its scene folder) of every complete scene of `assignments`."""
     out = []
-    for hw in ("hw1", "hw2"):
+    for hw in assignments:
         with open(os.path.join(shared, "scenes", hw, "MANIFEST.tsv"), encoding="utf-8") as f:
             for line in f:
                 cols = line.rstrip("\n").split("\t")
