@@ -27,7 +27,7 @@ HW3_CHECK_SAMPLES = "4"
 
 
 def complete_scenes(shared, assignments=("hw1", "hw2")):
-    """(assignment, path relative to its scene folder) of every complete scene."""
+    """(assignment, path relative to its scene folder) of every complete scene of `assignments`."""
     out = []
     for hw in assignments:
         with open(os.path.join(shared, "scenes", hw, "MANIFEST.tsv"), encoding="utf-8") as f:

@@ -84,10 +84,76 @@ TEST(WebSession, TraceIsTheTraceJsonOfTheCommandLine) {
     scene.setup.shadow_ray_epsilon *= 2;
     rt::PixelTrace t = rt::trace_pixel(scene, 0, 20, 11, rt::TraceOptions{}, rt::Rounding::Truncate);
     t.scene = tmp / "s.json";
-    EXPECT_EQ(rt::web::trace(0, 20, 11), rt::trace_json(scene, t));
-    const nlohmann::json outside = nlohmann::json::parse(rt::web::trace(0, 37, 0));
+    EXPECT_EQ(rt::web::trace(0, 20, 11, 0), rt::trace_json(scene, t));
+    const nlohmann::json outside = nlohmann::json::parse(rt::web::trace(0, 37, 0, 0));
     EXPECT_EQ(outside["error"], "pixel 37,0 is outside the 37x23 image");
-    EXPECT_EQ(nlohmann::json::parse(rt::web::trace(2, 0, 0))["error"], "no camera 3");
+    EXPECT_EQ(nlohmann::json::parse(rt::web::trace(2, 0, 0, 0))["error"], "no camera 3");
+}
+
+// The options' samples and seed are --samples and --seed: the image is render()'s under
+// them, another seed gives another image, and a trace is --sample's.
+TEST(WebSession, SamplesAndSeedAreTheCommandLines) {
+    TempDir tmp;
+    nlohmann::json j = nlohmann::json::parse(kScene);
+    j["Scene"]["Cameras"]["Camera"][0]["NumSamples"] = "4";
+    write_text(tmp / "s.json", j.dump());
+    rt::Scene scene = rt::build_scene(rt::load_scene(tmp / "s.json"));
+    rt::RenderOptions o;
+    o.samples = 9;
+    o.seed = 5;
+    rt::apply_overrides(scene, o);
+    ASSERT_EQ(rt::web::load(tmp / "s.json", R"({"samples": 9, "seed": 5})"), "");
+    const nlohmann::json info = nlohmann::json::parse(rt::web::scene_json());
+    EXPECT_EQ(info["cameras"][0]["samples"], 9);
+    EXPECT_EQ(info["cameras"][1]["samples"], 9);
+    const std::vector<uint8_t> whole = rgba_of(rt::render(scene, 0, o));
+    std::vector<uint8_t> mine(whole.size(), 0);
+    ASSERT_EQ(rt::web::render_part(0, 0, 1, mine.data()), "");
+    EXPECT_EQ(mine, whole);
+    rt::RenderOptions other = o;
+    other.seed = 6;
+    EXPECT_NE(rgba_of(rt::render(scene, 0, other)), whole) << "the seed changes nothing: the test shows nothing";
+
+    rt::PixelTrace t = rt::trace_pixel(scene, 0, 20, 11, rt::TraceOptions{}, rt::Rounding::Truncate, 5, 7);
+    t.scene = tmp / "s.json";
+    const std::string traced = rt::web::trace(0, 20, 11, 7);
+    EXPECT_EQ(traced, rt::trace_json(scene, t));
+    const nlohmann::json sample = nlohmann::json::parse(traced)["sample"];
+    EXPECT_EQ(sample["index"], 7);
+    EXPECT_EQ(sample["seed"], 5);
+    EXPECT_EQ(nlohmann::json::parse(rt::web::trace(0, 20, 11, 9))["error"],
+              "sample 9: camera 1 takes 9 samples per pixel (0..8)");
+    EXPECT_EQ(nlohmann::json::parse(rt::web::trace(0, 20, 11, -1))["error"],
+              "sample -1: camera 1 takes 9 samples per pixel (0..8)");
+
+    // samples 0 keeps each camera's NumSamples; a seed beyond 2^53 comes as a string of digits.
+    ASSERT_EQ(rt::web::load(tmp / "s.json", R"({"samples": 0, "seed": "4611686018427387904"})"), "");
+    const nlohmann::json own = nlohmann::json::parse(rt::web::scene_json());
+    EXPECT_EQ(own["cameras"][0]["samples"], 4);
+    EXPECT_EQ(own["cameras"][1]["samples"], 0);
+    EXPECT_EQ(nlohmann::json::parse(rt::web::trace(0, 1, 2, 3))["sample"]["seed"].get<uint64_t>(), uint64_t(1) << 62);
+    EXPECT_EQ(nlohmann::json::parse(rt::web::trace(1, 0, 0, 1))["error"],
+              "sample 1: camera 2 takes 1 sample per pixel (0..0)");
+    EXPECT_TRUE(nlohmann::json::parse(rt::web::trace(1, 0, 0, 0))["sample"].is_null());
+    EXPECT_EQ(rt::web::load(tmp / "s.json", R"({"seed": "12"})"), "");
+    EXPECT_EQ(nlohmann::json::parse(rt::web::trace(0, 1, 2, 3))["sample"]["seed"], 12);
+}
+
+// Bad samples and seeds are refused as every option's bad value is; the largest pass.
+TEST(WebSession, BadSamplesAndSeedsAreRefused) {
+    TempDir tmp;
+    write_text(tmp / "s.json", kScene);
+    for (const char* bad :
+         {R"({"samples": -1})", R"({"samples": 2.5})", R"({"samples": "4"})", R"({"samples": 1048577})",
+          R"({"samples": null})", R"({"seed": -1})", R"({"seed": 1.5})", R"({"seed": "12a"})", R"({"seed": ""})",
+          R"({"seed": "-3"})", R"({"seed": " 3"})", R"({"seed": 4611686018427387905})",
+          R"({"seed": "4611686018427387905"})", R"({"seed": "99999999999999999999"})", R"({"seed": true})"}) {
+        const nlohmann::json o = nlohmann::json::parse(bad);
+        EXPECT_EQ(rt::web::load(tmp / "s.json", bad),
+                  "options: " + o.begin().key() + ": unknown option or bad value " + o.begin().value().dump())
+            << bad;
+    }
+    EXPECT_EQ(rt::web::load(tmp / "s.json", R"({"samples": 1048576, "seed": 4611686018427387904})"), "");
 }
 
 TEST(WebSession, ErrorsAreTheCommandLinesLines) {

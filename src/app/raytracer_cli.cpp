@@ -147,7 +147,7 @@ int raytracer_cli(int argc, char** argv) {
         app, "--seed", "S",
         "the random numbers' seed (0..2^62, default 0): the same seed gives the same image on any "
         "machine and thread count, another seed independent noise",
-        [&o](const std::string& v) { o.render.seed = uint64_t(cli::whole_number("--seed", v, 0, long(1) << 62)); });
+        [&o](const std::string& v) { o.render.seed = uint64_t(cli::whole_number("--seed", v, 0, long(kMaxSeed))); });
     app.add_flag("-q,--quiet", o.quiet, "print errors only (and no progress line, which is shown only on a terminal)");
     app.add_flag(
         "--strict", o.strict,

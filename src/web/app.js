@@ -52,12 +52,19 @@ async function readFiles(list) {
   useFiles(given);
 }
 
+// The fields as raytracer.js's options. Samples and seed go as typed, for the renderer to
+// check (a bad one shows its line); a seed beyond 2^53 as its digits, which a number
+// would round.
 function options() {
   const o = { cull: $("cull").checked, precision: $("precision").value };
   const depth = parseInt($("max_depth").value, 10);
   if (!Number.isNaN(depth) && depth >= 0) o.max_depth = depth;
   const eps = parseFloat($("epsilon_scale").value);
   if (eps > 0 && eps !== 1) o.epsilon_scale = eps;
+  const samples = $("samples").value;
+  if (samples !== "") o.samples = Number(samples);
+  const seed = $("seed").value.trim();
+  if (seed !== "") o.seed = /^\d+$/.test(seed) && Number.isSafeInteger(Number(seed)) ? Number(seed) : seed;
   const w = parseInt($("workers").value, 10);
   if (w > 0) o.workers = w;
   return o;
@@ -132,7 +139,8 @@ function showImage(img, camera) {
       setTimeout(() => URL.revokeObjectURL(a.href), 1000);
     }, "image/png");
   };
-  caption.append(img.name + ": " + img.width + "x" + img.height + ", " + img.seconds.toFixed(3) + " s  ", link);
+  caption.append(img.name + ": " + img.width + "x" + img.height + ", " +
+                 (img.samples ? img.samples + " samples/pixel, " : "") + img.seconds.toFixed(3) + " s  ", link);
   const compare = document.createElement("label");
   compare.className = "button";
   compare.textContent = "compare with your PNG";
@@ -218,8 +226,8 @@ function swatch(rgb) {
 }
 
 // One ray of the tree: what it hit, the lights, the Fresnel terms, its colour; its
-// children (reflection, refraction) below it.
-function rayNode(ray) {
+// children (reflection, refraction) below it. `timed`: the pixel's samples draw times.
+function rayNode(ray, timed) {
   const d = document.createElement("details");
   d.open = ray.depth < 2;
   const s = document.createElement("summary");
@@ -227,31 +235,55 @@ function rayNode(ray) {
   s.append(ray.kind + " ray, depth " + ray.depth + ": " + what + ", returns ", swatch(ray.radiance || [0, 0, 0]), " " + fmt(ray.radiance || []));
   d.appendChild(s);
   const dl = document.createElement("dl");
-  for (const k of ["origin", "direction", "weight", "factor", "tmin", "tmax", "cull", "culled", "inside_material"]) entry(dl, k, ray[k]);
+  for (const k of ["origin", "direction", "ideal_direction", "weight", "factor", "tmin", "tmax", "cull", "culled", "inside_material"]) entry(dl, k, ray[k]);
+  if (timed) entry(dl, "time", ray.time);
   if (ray.hit) for (const [k, v] of Object.entries(ray.hit)) entry(dl, "hit." + k, v);
   for (const k of ["ambient", "local", "fresnel", "beer", "depth_limit"]) entry(dl, k, ray[k]);
   d.appendChild(dl);
   for (const l of ray.lights || []) {
     const ld = document.createElement("details");
     const ls = document.createElement("summary");
-    ls.textContent = "light " + l.light + (l.shadowed ? ": shadowed by " + (l.occluder && l.occluder.object ? l.occluder.object : "an object") : l.facing === false ? ": faces away" : ": adds " + fmt(l.added || []));
+    ls.textContent = "light " + l.light + (l.area_point ? " (area, at " + fmt(l.area_point) + ")" : "") + (l.shadowed ? ": shadowed by " + (l.occluder && l.occluder.object ? l.occluder.object : "an object") : l.facing === false ? ": faces away" : ": adds " + fmt(l.added || []));
     ld.appendChild(ls);
     const ldl = document.createElement("dl");
     for (const [k, v] of Object.entries(l)) if (k !== "light") entry(ldl, k, v);
     ld.appendChild(ldl);
     d.appendChild(ld);
   }
-  for (const c of ray.children || []) d.appendChild(rayNode(c));
+  for (const c of ray.children || []) d.appendChild(rayNode(c, timed));
   return d;
 }
 
+// Traces sample `trace sample` of a pixel with the options its image was rendered with.
 async function traceAt(camera, x, y) {
+  state.traced = { camera, x, y };
   try {
-    const t = await raytracer.trace({ files: state.files, scene: state.scene, options: state.result ? state.result.options : options(), camera, x, y });
-    $("trace-where").textContent = "pixel " + x + "," + y + " of camera " + (camera + 1) + " (pixel value " + fmt(t.pixel) + ")";
+    const sample = Number($("sample").value || 0);
+    const opts = state.result ? state.result.options : options();
+    const t = await raytracer.trace({ files: state.files, scene: state.scene, options: opts, camera, x, y, sample });
+    setError("");
+    const s = t.sample;
+    // The seed as given: the trace's, a JSON number, loses digits beyond 2^53 in JavaScript.
+    $("trace-where").textContent = "pixel " + x + "," + y + " of camera " + (camera + 1) +
+      (s ? ", sample " + s.index + " of " + t.samples + " (seed " + (opts.seed === undefined ? 0 : opts.seed) + ")" : "") +
+      " (pixel value " + fmt(t.pixel) + ")";
+    // The sample's figures: where it fell in the pixel, on the lens and in the shutter,
+    // its own radiance, and the mean of the pixel's samples that the image holds.
+    // Without motion every time is 0, and not shown.
+    const timed = s !== null && s.time !== 0;
+    const dl = $("trace-sample");
+    dl.textContent = "";
+    if (s) {
+      entry(dl, "pixel_offset", s.pixel_offset);
+      entry(dl, "lens", s.lens);
+      if (timed) entry(dl, "time", s.time);
+      entry(dl, "radiance", t.radiance);
+      entry(dl, "clamped", t.clamped);
+      entry(dl, "mean", s.mean);
+    }
     const tree = $("trace-tree");
     tree.textContent = "";
-    tree.appendChild(rayNode(t.ray));
+    tree.appendChild(rayNode(t.ray, timed));
     $("trace").hidden = false;
     state.lastTrace = t;
   } catch (e) {
@@ -279,6 +311,7 @@ function setup() {
   };
   $("files").onchange = (e) => readFiles(e.target.files);
   $("render").onclick = render;
+  $("sample").onchange = () => state.traced && !$("trace").hidden && traceAt(state.traced.camera, state.traced.x, state.traced.y);
   $("bundled").onchange = (e) => loadBundled(e.target.value);
   $("workers").placeholder = String(raytracer.defaultWorkers());
   fetch("scenes/index.json").then((r) => r.json()).then((list) => {

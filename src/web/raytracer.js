@@ -1,11 +1,12 @@
 // The renderer's JavaScript API (docs/web.md), used by the page and by tests:
 //   await raytracer.render({files: {name: Uint8Array, ...}, scene: "name.json", options: {...}})
-//     -> {images: [{name, width, height, rgba: Uint8Array}], seconds, warnings}
-//   await raytracer.trace({files, scene, options, camera, x, y}) -> the --trace-json object
+//     -> {images: [{name, width, height, samples, rgba: Uint8Array}], seconds, warnings}
+//   await raytracer.trace({files, scene, options, camera, x, y, sample}) -> the --trace-json object
 //   await raytracer.compare(a, b, width, height, tolerance) -> {figures, heat}
 // options: cull (true), precision ("double" | "float"), max_depth (-1: the scene's),
-// epsilon_scale (1), min_weight (1e-4), rounding ("truncate" | "nearest"), workers (how
-// many Web Workers render, default one per core), onProgress(done, total).
+// epsilon_scale (1), min_weight (1e-4), rounding ("truncate" | "nearest"), samples (0:
+// each camera's NumSamples), seed (0; beyond 2^53 a string of digits), workers (how many
+// Web Workers render, default one per core), onProgress(done, total).
 // Each worker holds its own WebAssembly module and copy of the scene; an image's 16x16
 // tiles are dealt to them in turn, and every pixel is the same whichever renders it.
 // Errors reject with an Error whose message is the command line's one line ("error: ...").
@@ -52,7 +53,7 @@
   // whether or not the message had it already.
   const failure = (message) => new Error(/^error: /.test(message) ? message : "error: " + message);
 
-  const kRenderKeys = ["cull", "max_depth", "epsilon_scale", "min_weight", "rounding"];
+  const kRenderKeys = ["cull", "max_depth", "epsilon_scale", "min_weight", "rounding", "samples", "seed"];
 
   class Raytracer {
     constructor() {
@@ -135,7 +136,7 @@
               }
           const s = (performance.now() - t1) / 1000;
           seconds += s;
-          images.push({ name: cam.name, width: cam.width, height: cam.height, rgba, seconds: s });
+          images.push({ name: cam.name, width: cam.width, height: cam.height, samples: cam.samples, rgba, seconds: s });
         }
         return { images, seconds, loadSeconds, warnings: info.warnings, workers: n };
       });
@@ -143,9 +144,13 @@
 
     trace(req) {
       return this.serial(async () => {
+        // The module takes a 32-bit integer, which would truncate anything else silently.
+        const sample = req.sample === undefined ? 0 : req.sample;
+        if (!Number.isInteger(sample) || Math.abs(sample) > 0x7fffffff)
+          throw failure("sample " + JSON.stringify(sample) + ": not a whole number");
         const n = this.loaded ? this.workers.length : 1;
         await this.load(req, Math.max(1, n));
-        const r = await this.workers[0].ask({ type: "trace", camera: req.camera || 0, x: req.x, y: req.y });
+        const r = await this.workers[0].ask({ type: "trace", camera: req.camera || 0, x: req.x, y: req.y, sample });
         if (r.error) throw failure(r.error);
         if (r.trace.error) throw failure(r.trace.error);
         return r.trace;

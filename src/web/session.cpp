@@ -4,11 +4,15 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cstdint>
 #include <exception>
 #include <optional>
+#include <string>
 #include <vector>
 
+#include "rt/core/count_text.h"
 #include "rt/core/error.h"
+#include "rt/loader/camera_desc.h"
 #include "rt/loader/load_scene.h"
 #include "rt/render/render.h"
 #include "rt/scene_build/build_scene.h"
@@ -29,7 +33,26 @@ Session& session() {
     return s;
 }
 
-// The command line's options of the same names (rt/app/run.h, docs/web.md).
+// A whole number from 0 to `hi`: a JSON integer, or a string of its decimal digits (a
+// JavaScript number holds whole numbers exactly only up to 2^53).
+std::optional<uint64_t> whole_number(const nlohmann::json& v, uint64_t hi) {
+    if (v.is_number_unsigned()) {
+        const uint64_t n = v.get<uint64_t>();
+        return n <= hi ? std::optional<uint64_t>(n) : std::nullopt;
+    }
+    if (!v.is_string()) return std::nullopt;
+    const std::string& digits = v.get_ref<const std::string&>();
+    if (digits.empty() || digits.size() > 19) return std::nullopt;  // 19 digits stay below 2^64
+    uint64_t n = 0;
+    for (const char c : digits) {
+        if (c < '0' || c > '9') return std::nullopt;
+        n = n * 10 + static_cast<uint64_t>(c - '0');
+    }
+    return n <= hi ? std::optional<uint64_t>(n) : std::nullopt;
+}
+
+// The command line's options of the same names (rt/app/run.h, docs/web.md); samples 0
+// keeps each camera's NumSamples, as without --samples.
 void read_options(const std::string& text, RenderOptions& r) {
     if (text.empty()) return;
     const nlohmann::json o = nlohmann::json::parse(text);
@@ -48,6 +71,10 @@ void read_options(const std::string& text, RenderOptions& r) {
             r.trace.min_weight = v.get<double>();
         } else if (k == "rounding" && v.is_string() && (v == "truncate" || v == "nearest")) {
             r.rounding = v == "nearest" ? Rounding::Nearest : Rounding::Truncate;
+        } else if (k == "samples" && v.is_number_unsigned() && v.get<uint64_t>() <= uint64_t(kMaxSamples)) {
+            r.samples = v.get<int>();
+        } else if (k == "seed" && whole_number(v, kMaxSeed)) {
+            r.seed = *whole_number(v, kMaxSeed);
         } else {
             throw UsageError("options: " + k + ": unknown option or bad value " + v.dump());
         }
@@ -79,7 +106,8 @@ std::string scene_json() {
     nlohmann::json out = {{"cameras", nlohmann::json::array()}, {"warnings", s.warnings}};
     if (s.scene)
         for (const Camera& c : s.scene->setup.cameras)
-            out["cameras"].push_back({{"name", c.image_name}, {"width", c.width}, {"height", c.height}});
+            out["cameras"].push_back(
+                {{"name", c.image_name}, {"width", c.width}, {"height", c.height}, {"samples", c.samples}});
     return out.dump();
 }
 
@@ -110,7 +138,7 @@ std::string render_part(int camera, int part, int parts, uint8_t* rgba) {
     }
 }
 
-std::string trace(int camera, int x, int y) {
+std::string trace(int camera, int x, int y, int sample) {
     const Session& s = session();
     try {
         if (!s.scene) return nlohmann::json{{"error", "no scene loaded"}}.dump();
@@ -123,8 +151,15 @@ std::string trace(int camera, int x, int y) {
                                                 " is outside the " + std::to_string(c.width) + "x" +
                                                 std::to_string(c.height) + " image"}}
                 .dump();
-        PixelTrace t =
-            trace_pixel(*s.scene, static_cast<size_t>(camera), x, y, s.render.trace, s.render.rounding, s.render.seed);
+        const int samples = std::max(1, c.samples);
+        if (sample < 0 || sample >= samples)
+            return nlohmann::json{{"error", "sample " + std::to_string(sample) + ": camera " +
+                                                std::to_string(camera + 1) + " takes " +
+                                                count_of(size_t(samples), "sample") + " per pixel (0.." +
+                                                std::to_string(samples - 1) + ")"}}
+                .dump();
+        PixelTrace t = trace_pixel(*s.scene, static_cast<size_t>(camera), x, y, s.render.trace, s.render.rounding,
+                                   s.render.seed, sample);
         t.scene = s.path;
         return trace_json(*s.scene, t);
     } catch (const std::exception& e) {

@@ -18,7 +18,7 @@ namespace rt_float::web {
 std::string load(const std::string& scene_path, const std::string& options_json);
 std::string scene_json();
 std::string render_part(int camera, int part, int parts, uint8_t* rgba);
-std::string trace(int camera, int x, int y);
+std::string trace(int camera, int x, int y, int sample);
 }  // namespace rt_float::web
 
 namespace {
@@ -59,8 +59,8 @@ EMSCRIPTEN_KEEPALIVE const char* rtw_render_part(int camera, int part, int parts
                        : rt::web::render_part(camera, part, parts, rgba));
 }
 
-EMSCRIPTEN_KEEPALIVE const char* rtw_trace(int camera, int x, int y) {
-    return out(g_float ? rt_float::web::trace(camera, x, y) : rt::web::trace(camera, x, y));
+EMSCRIPTEN_KEEPALIVE const char* rtw_trace(int camera, int x, int y, int sample) {
+    return out(g_float ? rt_float::web::trace(camera, x, y, sample) : rt::web::trace(camera, x, y, sample));
 }
 
 // Compares two RGBA images of one size as rtdiff does (alpha ignored); writes the heatmap

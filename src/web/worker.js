@@ -5,7 +5,7 @@
 //       -> {error, info: {cameras: [{name, width, height}], warnings}}
 //   {type: "render", camera, parts: [k, ...], total} -> {type: "progress"} per part, then
 //       {rgba}: the image with the parts' tiles rendered (alpha 255), the rest zero
-//   {type: "trace", camera, x, y} -> {trace}: the --trace-json object
+//   {type: "trace", camera, x, y, sample} -> {trace}: the --trace-json object
 //   {type: "compare", a, b, width, height, tolerance} -> {figures, heat}
 /* global createRaytracerModule, importScripts, sceneFiles */
 "use strict";
@@ -82,7 +82,7 @@ const handlers = {
     }
   },
   trace(M, m) {
-    return { trace: JSON.parse(M.UTF8ToString(M._rtw_trace(m.camera, m.x, m.y))) };
+    return { trace: JSON.parse(M.UTF8ToString(M._rtw_trace(m.camera, m.x, m.y, m.sample || 0))) };
   },
   compare(M, m) {
     const n = m.width * m.height * 4;

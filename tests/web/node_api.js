@@ -49,5 +49,7 @@ async function expectRejects(what, promise, message) {
   }
   await expectRejects("a scene not among the files", rt.render({ files, scene: "other.json" }),
                       "error: other.json: not among the files given");
+  await expectRejects("a sample not a whole number", rt.trace({ files, scene: "bad.json", x: 0, y: 0, sample: 1.5 }),
+                      "error: sample 1.5: not a whole number");
   process.exit(failed);
 })();

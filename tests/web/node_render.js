@@ -1,7 +1,8 @@
 // Renders scene files with the WebAssembly module alone (build/web/rt.js) under Node, one
 // thread, as the page's workers do: node node_render.js OUT_DIR [--precision float]
-// SCENE.json... writes OUT_DIR/<ImageName without extension>.ppm for every camera and
-// prints one line per image: "<ppm path>\t<render seconds>". Errors: one line, exit 1.
+// [--options JSON] SCENE.json... (JSON: the page's load options, {"samples": 4, "seed": 7})
+// writes OUT_DIR/<ImageName without extension>.ppm for every camera and prints one line
+// per image: "<ppm path>\t<render seconds>". Errors: one line, exit 1.
 // Run with --no-experimental-fetch under Node 18 and later (docs/web.md).
 "use strict";
 const fs = require("fs");
@@ -19,12 +20,12 @@ function cString(M, s) {
 
 async function main() {
   const args = process.argv.slice(2);
-  let precision = "double";
-  const i = args.indexOf("--precision");
-  if (i >= 0) {
-    precision = args[i + 1];
-    args.splice(i, 2);
-  }
+  const option = (name, otherwise) => {
+    const i = args.indexOf(name);
+    return i >= 0 ? args.splice(i, 2)[1] : otherwise;
+  };
+  const precision = option("--precision", "double");
+  const options = option("--options", "");
   const [out, ...scenes] = args;
   fs.mkdirSync(out, { recursive: true });
   const M = await createRaytracerModule();
@@ -46,7 +47,7 @@ async function main() {
     }
     writeFiles(M.FS, root, files);
     M.FS.chdir(root);
-    const ptrs = [name, "", precision].map((s) => cString(M, s));
+    const ptrs = [name, options, precision].map((s) => cString(M, s));
     const error = M.UTF8ToString(M._rtw_load(...ptrs));
     ptrs.forEach((p) => M._free(p));
     if (error) {

@@ -12,8 +12,9 @@ namespace rt {
 
 struct Scene;
 
-// The seed of a run without --seed.
+// The seed of a run without --seed, and the largest seed --seed and the page take.
 constexpr uint64_t kDefaultSeed = 0;
+constexpr uint64_t kMaxSeed = uint64_t(1) << 62;
 
 // How a camera's pixels are sampled.
 struct PixelSampling {

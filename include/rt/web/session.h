@@ -10,13 +10,16 @@ namespace rt::web {
 
 // Loads and builds the scene file at `scene_path` (JSON; PLY files relative to it), with
 // `options_json` ({"cull": true, "max_depth": -1, "epsilon_scale": 1, "min_weight":
-// 1e-4, "rounding": "truncate"}, each key optional, "" for none). Returns "" or the
-// command line's one-line error ("<file>: <place>: <what>"); the previous scene is
-// released either way. Warnings are kept for scene_json.
+// 1e-4, "rounding": "truncate", "samples": 0, "seed": 0}, each key optional, "" for none;
+// samples 0: each camera's NumSamples; seed: a whole number or a string of its digits).
+// Returns "" or the command line's one-line error ("<file>: <place>: <what>"); the
+// previous scene is released either way. Warnings are kept for scene_json.
 std::string load(const std::string& scene_path, const std::string& options_json);
 
 // The loaded scene's cameras and the warnings its loading raised, as JSON:
-// {"cameras": [{"name": ImageName, "width": W, "height": H}, ...], "warnings": [...]}.
+// {"cameras": [{"name": ImageName, "width": W, "height": H, "samples": N}, ...],
+// "warnings": [...]}; samples per pixel as rendered (the options' samples, or NumSamples;
+// 0: one ray through the centre).
 std::string scene_json();
 
 // Renders the tiles of part `part` of `parts` (rt/render/render.h, RenderOptions::part)
@@ -24,8 +27,9 @@ std::string scene_json();
 // pixels with alpha 255, every other byte left as it was. Returns "" or an error.
 std::string render_part(int camera, int part, int parts, uint8_t* rgba);
 
-// The ray tree of pixel (x, y) of camera `camera`, as --trace-json writes it; on a bad
-// camera or pixel, {"error": "..."}.
-std::string trace(int camera, int x, int y);
+// The ray tree of sample `sample` of pixel (x, y) of camera `camera` under the options'
+// seed, as --trace-json writes it (--sample); on a bad camera, pixel or sample,
+// {"error": "..."}.
+std::string trace(int camera, int x, int y, int sample);
 
 }  // namespace rt::web
