@@ -24,7 +24,7 @@ struct Camera {
 
     // Ray through point (dx, dy) of pixel (i, j), each in [0, 1) from its top-left corner,
     // from point (lx, ly) of the lens (each in [0, 1), its corner at -u -v), at `time`
-    // (docs/conventions.md, "Depth of field"): the pinhole ray's point at FocusDistance
+    // (docs/conventions.md, "Assignment 3"): the pinhole ray's point at FocusDistance
     // along the gaze stays sharp.
     Ray sample_ray(int i, int j, Real dx, Real dy, Real lx, Real ly, Real time) const {
         Ray r = pixel_ray(i, j, dx, dy);

@@ -1,4 +1,4 @@
-// Counter-based random numbers (docs/conventions.md, "Random numbers"): each sample of
+// Counter-based random numbers (docs/conventions.md, "Assignment 3"): each sample of
 // each pixel has a stream of its own, a pure function of (seed, pixel, sample) and of
 // how many numbers it has drawn, with no state shared between threads. An image is then
 // the same whatever the thread count, the tile order, the CPU or the build.

@@ -2,7 +2,7 @@
 // sampling in one exhaustive switch (sample_light).
 //
 // Point (spec 3, "PointLight"): irradiance E = I / d^2 at distance d.
-// Area (Lights/AreaLight; docs/conventions.md, "Area lights"): a square of side s about
+// Area (Lights/AreaLight; docs/conventions.md, "Assignment 3"): a square of side s about
 // its centre, lit on both faces; a shaded point draws one point q on it per sample and
 // takes E = L s^2 |n_l . w| / d^2, w the unit vector from q to the point.
 #pragma once

@@ -31,7 +31,7 @@ struct MaterialDesc {
     Real absorption_index = 0;    // conductors: imaginary part k of the complex index
     Vec3 absorption_coefficient;  // dielectrics: Beer's law c, per unit distance
     // Roughness: how far a mirror's, conductor's or dielectric's rays are perturbed (0:
-    // sharp; docs/conventions.md, "Roughness"); ignored for Plain materials.
+    // sharp; docs/conventions.md, "Assignment 3"); ignored for Plain materials.
     Real roughness = 0;
     std::string id;  // its _id, for --trace
 };

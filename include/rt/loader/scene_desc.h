@@ -30,7 +30,7 @@ struct PointLightDesc {
 // Lights/AreaLight: a square emitter of side `size` about `position`, facing along
 // `normal` (non-zero, as written: the build normalises it, so that a conversion writes
 // back the file's own); `radiance` per unit area and solid angle (docs/conventions.md,
-// "Area lights").
+// "Assignment 3").
 struct AreaLightDesc {
     Vec3 position, normal, radiance;
     Real size = 1;

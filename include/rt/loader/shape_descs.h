@@ -33,7 +33,7 @@ struct ShapeDescBase {
     std::string id;
     const char* key = nullptr;  // the entry's Objects/<key> when not its kind's (--trace)
     // MotionBlur: the world-space translation it makes over the shutter, after its
-    // Transformations (zero: still; docs/conventions.md, "Motion blur").
+    // Transformations (zero: still; docs/conventions.md, "Assignment 3").
     Vec3 motion;
 };
 

@@ -53,7 +53,7 @@ enum class RayKind { Camera, Reflection, Refraction, Shadow };
 inline Ray spawn_ray(Vec3 p, Vec3 offset_normal, Real epsilon, Vec3 dir) { return {p + offset_normal * epsilon, dir}; }
 
 // A rough surface's secondary ray direction (Roughness; docs/conventions.md,
-// "Roughness"): the ideal direction r (unit length) moved by roughness * (xi - 1/2) along
+// "Assignment 3"): the ideal direction r (unit length) moved by roughness * (xi - 1/2) along
 // each of two unit vectors orthogonal to it and to each other, and renormalised; xi1 and
 // xi2 uniform in [0, 1).
 inline Vec3 perturb_direction(Vec3 r, Real roughness, Real xi1, Real xi2) {

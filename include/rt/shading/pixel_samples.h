@@ -42,7 +42,7 @@ struct CameraSample {
 CameraSample camera_sample(const Camera& cam, const PixelSampling& sampling, int x, int y, int k);
 
 // The pixel's radiance (0..255 units, unclamped): the mean of its samples' radiance,
-// which the image then clamps (docs/conventions.md, "Pixel samples"); its paths traced
+// which the image then clamps (docs/conventions.md, "Assignment 3"); its paths traced
 // kPacket samples at a time.
 Vec3 sample_pixel(const Scene& scene, const Camera& cam, const PixelSampling& sampling, int x, int y,
                   const TraceOptions& options, TraceCache* cache);
