@@ -17,14 +17,14 @@ Box Instance::bounds() const {
         lo = vmin(lo, p);
         hi = vmax(hi, p);
     }
-    return is_still(motion) ? Box::around(lo, hi) : swept(Box::around(lo, hi), motion);
+    return moving ? swept(Box::around(lo, hi), motion) : Box::around(lo, hi);
 }
 
 bool Instance::trace(const Ray& ray, Real tmin, Real tmax, bool cull, bool shadow, Real& t, Real w[3],
                      uint32_t& part) const {
     // Not renormalised: a point at t along the object ray is the point at t along `ray`.
     // A moving instance is where its motion has taken it at the ray's time.
-    const Vec3 org = is_still(motion) ? ray.org : ray.org - motion * ray.time;
+    const Vec3 org = moving ? ray.org - motion * ray.time : ray.org;
     const Ray object{to_object.point(org), to_object.vector(ray.dir)};
     if (shadow) {
         if (!any_hit(*mesh, object, tmin, tmax)) return false;

@@ -15,6 +15,12 @@ PixelSampling pixel_sampling(const Scene& scene, size_t camera, uint64_t seed) {
     s.timed = scene.geometry.moves;
     const int n = static_cast<int>(std::lround(std::sqrt(double(s.samples))));
     s.grid = s.samples > 1 && n * n == s.samples ? n : 0;
+    const Camera& cam = scene.setup.cameras[camera];
+    s.random =
+        s.samples > 1 || cam.aperture > 0 || s.timed ||
+        std::any_of(scene.setup.lights.begin(), scene.setup.lights.end(), [](const Light& l) { return l.sampled(); }) ||
+        std::any_of(scene.setup.materials.begin(), scene.setup.materials.end(),
+                    [](const Material& m) { return m.roughness > 0; });
     return s;
 }
 

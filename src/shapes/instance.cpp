@@ -8,7 +8,7 @@
 namespace rt {
 
 Instance Instance::build(const Desc& d, const BuildInputs& in) {
-    return {in.mesh_scenes.at(d.mesh).get(), d.transform.inverse(), d.material, d.motion};
+    return {in.mesh_scenes.at(d.mesh).get(), d.transform.inverse(), d.material, d.motion, !is_still(d.motion)};
 }
 
 const std::vector<Vec3>& Instance::mesh_positions(const Desc& d, const std::vector<MeshDesc>& meshes) {

@@ -18,12 +18,13 @@ inline uint64_t mix64(uint64_t z) {
 }
 
 struct SampleStream {
-    uint64_t key = 0;
-    uint32_t drawn = 0;
+    uint64_t key;
+    uint32_t drawn;
 
+    // Uninitialised: a packet's array of streams costs nothing where no number is drawn.
     SampleStream() = default;
     SampleStream(uint64_t seed, uint64_t pixel, uint32_t sample)
-        : key(mix64(mix64(mix64(seed + 0x9e3779b97f4a7c15ULL) ^ pixel) + sample)) {}
+        : key(mix64(mix64(mix64(seed + 0x9e3779b97f4a7c15ULL) ^ pixel) + sample)), drawn(0) {}
 
     // The next number, uniform in [0, 1): the top 53 bits (double) or 24 bits (float)
     // of the hash, so that each is exact in Real.

@@ -22,6 +22,9 @@ struct PixelSampling {
     uint64_t seed = kDefaultSeed;
     bool timed = false;  // some shape moves: each sample draws a time
     int grid = 0;        // n when samples is a square n^2 > 1 (stratified), else 0
+    // Whether any path draws a random number: samples, a lens, motion, an area light or a
+    // rough material. Without, a pixel is its centre ray and its streams are never read.
+    bool random = false;
 };
 
 // The sampling of camera `camera` of `scene` under `seed` (its NumSamples, or --samples,

@@ -28,6 +28,7 @@ struct Instance {
     Affine to_object;             // world -> object
     uint32_t material = 0;
     Vec3 motion;  // MotionBlur: at time t of a ray the whole instance is moved by motion * t
+    bool moving = false;
 
     static Instance build(const Desc& d, const BuildInputs& in);
 
