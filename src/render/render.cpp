@@ -65,16 +65,16 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
             // Neighbouring pixels' camera rays traverse the tree as one packet of
             // kPacketW x kPacketH pixels.
             uint8_t pixels[kTile][kTile * 3];
+            const auto put = [&](int px, int py, Vec3 c) {
+                uint8_t* rgb = &pixels[py - y0][(px - x0) * 3];
+                rgb[0] = quantize(c.x, options.rounding);
+                rgb[1] = quantize(c.y, options.rounding);
+                rgb[2] = quantize(c.z, options.rounding);
+            };
             if (sampling.samples > 1) {
                 // Distribution ray tracing: each pixel's samples (pixel_samples.h).
                 for (int y = y0; y < y1; ++y)
-                    for (int x = x0; x < x1; ++x) {
-                        const Vec3 c = sample_pixel(scene, cam, sampling, x, y, topt, &cache);
-                        uint8_t* rgb = &pixels[y - y0][(x - x0) * 3];
-                        rgb[0] = quantize(c.x, options.rounding);
-                        rgb[1] = quantize(c.y, options.rounding);
-                        rgb[2] = quantize(c.z, options.rounding);
-                    }
+                    for (int x = x0; x < x1; ++x) put(x, y, sample_pixel(scene, cam, sampling, x, y, topt, &cache));
             } else
                 for (int y = y0; y < y1; y += kPacketH)
                     for (int x = x0; x < x1; x += kPacketW) {
@@ -95,12 +95,7 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
                         trace_primaries(scene, rays_in, n, topt, &cache, streams, c);
                         n = 0;
                         for (int py = y; py < std::min(y + kPacketH, y1); ++py)
-                            for (int px = x; px < std::min(x + kPacketW, x1); ++px, ++n) {
-                                uint8_t* rgb = &pixels[py - y0][(px - x0) * 3];
-                                rgb[0] = quantize(c[n].x, options.rounding);
-                                rgb[1] = quantize(c[n].y, options.rounding);
-                                rgb[2] = quantize(c[n].z, options.rounding);
-                            }
+                            for (int px = x; px < std::min(x + kPacketW, x1); ++px, ++n) put(px, py, c[n]);
                     }
             // The tile goes to the image a row at a time: a tile row (48 bytes) shares
             // cache lines with its neighbours', which the other workers render at the

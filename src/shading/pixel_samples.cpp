@@ -9,13 +9,13 @@
 namespace rt {
 
 PixelSampling pixel_sampling(const Scene& scene, size_t camera, uint64_t seed) {
+    const Camera& cam = scene.setup.cameras.at(camera);
     PixelSampling s;
-    s.samples = scene.setup.cameras.at(camera).samples;
+    s.samples = cam.samples;
     s.seed = seed;
     s.timed = scene.geometry.moves;
     const int n = static_cast<int>(std::lround(std::sqrt(double(s.samples))));
     s.grid = s.samples > 1 && n * n == s.samples ? n : 0;
-    const Camera& cam = scene.setup.cameras[camera];
     s.random =
         s.samples > 1 || cam.aperture > 0 || s.timed ||
         std::any_of(scene.setup.lights.begin(), scene.setup.lights.end(), [](const Light& l) { return l.sampled(); }) ||
@@ -40,10 +40,6 @@ CameraSample camera_sample(const Camera& cam, const PixelSampling& sampling, int
     if (cam.aperture > 0) {
         c.lx = c.stream.next();
         c.ly = c.stream.next();
-    }
-    if (cam.aperture == 0 && !sampling.timed && sampling.samples <= 1) {
-        c.ray = cam.primary_ray(x, y);  // the pinhole's centre ray, as without samples
-        return c;
     }
     const Real time = sampling.timed ? c.stream.next() : Real(0);
     c.ray = cam.sample_ray(x, y, c.dx, c.dy, c.lx, c.ly, time);

@@ -82,7 +82,7 @@ struct Sphere {
     // A moving sphere is tested where it is at the ray's time, and keeps how far it
     // moved in w for surface().
     template <bool kCull, bool kShadow>
-    bool intersect(const Ray& ray, Real tmin, Real tmax, Real& t, Real* w, uint32_t& part) const {
+    bool intersect(const Ray& ray, Real tmin, Real tmax, Real& t, Real* w, uint32_t&) const {
         if (moving) {
             const Vec3 shift = motion * ray.time;
             w[0] = shift.x;
@@ -90,7 +90,6 @@ struct Sphere {
             w[2] = shift.z;
             return intersect_still({ray.org - shift, ray.dir, ray.time}, tmin, tmax, t);
         }
-        (void)part;
         return intersect_still(ray, tmin, tmax, t);
     }
     bool intersect_still(const Ray& ray, Real tmin, Real tmax, Real& t) const {
