@@ -168,7 +168,7 @@ TEST(ShapeRegistry, HitsLieInTheBoundsWithUnitNormals) {
             const Vec3 org{Real(3 * u(rng)), Real(3 * u(rng)), Real(3 * u(rng))};
             const Vec3 target{Real(u(rng)), Real(u(rng)), Real(u(rng))};
             const rt::Ray ray{org, rt::normalize(target - org)};
-            Real t, w[3];
+            Real t, w[3] = {0, 0, 0};
             uint32_t part = 0;
             if (!shape.template intersect<false, false>(ray, 0, HUGE_VAL, t, w, part)) continue;
             ++hits;
