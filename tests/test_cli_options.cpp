@@ -141,7 +141,8 @@ TEST(Cli, UsageErrorsAreOneLinePlusTheUsage) {
     const std::string usage =
         "usage: raytracer [-o DIR] [-j N] [--precision double|float] [--isa LEVEL] [--cull|--no-cull]\n"
         "                 [--rounding truncate|nearest] [--min-weight W] [--stats FILE] [-q] [--strict]\n"
-        "                 [--samples N] [--seed S] [--repeat N] [--max-depth N] [--epsilon-scale F]\n"
+        "                 [--samples N] [--seed S] [--sampler MODE] [--noise-target E [--max-samples N]]\n"
+        "                 [--sample-map FILE] [--repeat N] [--max-depth N] [--epsilon-scale F]\n"
         "                 [--bvh-... (measurements)] [--frames A:B] [--shard K/N] scene.json|scene.xml...\n"
         "       raytracer --trace X,Y [--camera N] [--sample K] [--trace-json FILE] [options] "
         "scene.json|scene.xml";

@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "distribution_test_support.h"
 #include "loader_test_support.h"
 #include "rt/core/error.h"
 #include "rt/core/random.h"
@@ -28,6 +29,9 @@
 
 namespace {
 
+using distribution_test::area_light;
+using distribution_test::build;
+using distribution_test::everything;
 using loader_test::json;
 using loader_test::kPath;
 using loader_test::parse;
@@ -47,10 +51,6 @@ void expect_error(const json& j, const std::string& pointer) {
         EXPECT_NE(msg.find(pointer), std::string::npos) << "expected " << pointer << " in: " << msg;
         EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
     }
-}
-
-json area_light() {
-    return json{{"_id", "1"}, {"Position", "0 5 0"}, {"Normal", "0 -1 0"}, {"Size", "2"}, {"Radiance", "10 10 10"}};
 }
 
 // --- the scene file ----------------------------------------------------------------------
@@ -284,28 +284,6 @@ TEST(PixelSamples, SquareCountsAreStratifiedOnePerCell) {
 
 // --- renders --------------------------------------------------------------------------------
 
-rt::Scene build(const json& j) { return rt::build_scene(parse(j.dump())); }
-
-// A scene that uses everything: an area light, a lens, a rough mirror, a moving sphere
-// and a moving mesh, at 8 samples.
-json everything() {
-    json j = sample();
-    json& cam = j["Scene"]["Cameras"]["Camera"];
-    cam["ImageResolution"] = "24 20";
-    cam["NumSamples"] = "8";
-    cam["FocusDistance"] = "2";
-    cam["ApertureSize"] = "0.1";
-    j["Scene"]["Lights"]["AreaLight"] = area_light();
-    j["Scene"]["Lights"]["AreaLight"]["Position"] = "0 1 -1";
-    j["Scene"]["Materials"]["Material"] =
-        json::array({j["Scene"]["Materials"]["Material"],
-                     {{"_id", "2"}, {"_type", "mirror"}, {"MirrorReflectance", "0.8 0.8 0.8"}, {"Roughness", "0.2"}}});
-    j["Scene"]["Objects"]["Sphere"]["MotionBlur"] = "0.3 0 0";
-    j["Scene"]["Objects"]["Plane"]["Material"] = "2";
-    j["Scene"]["Objects"]["Mesh"]["MotionBlur"] = "0 0.2 0";
-    return j;
-}
-
 TEST(DistributionRender, SameBytesForAnyThreadCountAndSeedChangesNoise) {
     const rt::Scene s = build(everything());
     rt::RenderOptions o;
@@ -320,7 +298,7 @@ TEST(DistributionRender, SameBytesForAnyThreadCountAndSeedChangesNoise) {
     for (size_t i = 0; i < merged.rgb.size(); ++i) merged.rgb[i] = std::max(merged.rgb[i], other.rgb[i]);
     EXPECT_EQ(merged.rgb, one.rgb);
     o = {};
-    o.seed = 12345;
+    o.sampling.seed = 12345;
     EXPECT_NE(rt::render(s, 0, o).rgb, one.rgb);
 }
 

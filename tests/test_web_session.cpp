@@ -100,7 +100,7 @@ TEST(WebSession, SamplesAndSeedAreTheCommandLines) {
     rt::Scene scene = rt::build_scene(rt::load_scene(tmp / "s.json"));
     rt::RenderOptions o;
     o.samples = 9;
-    o.seed = 5;
+    o.sampling.seed = 5;
     rt::apply_overrides(scene, o);
     ASSERT_EQ(rt::web::load(tmp / "s.json", R"({"samples": 9, "seed": 5})"), "");
     const nlohmann::json info = nlohmann::json::parse(rt::web::scene_json());
@@ -111,10 +111,10 @@ TEST(WebSession, SamplesAndSeedAreTheCommandLines) {
     ASSERT_EQ(rt::web::render_part(0, 0, 1, mine.data()), "");
     EXPECT_EQ(mine, whole);
     rt::RenderOptions other = o;
-    other.seed = 6;
+    other.sampling.seed = 6;
     EXPECT_NE(rgba_of(rt::render(scene, 0, other)), whole) << "the seed changes nothing: the test shows nothing";
 
-    rt::PixelTrace t = rt::trace_pixel(scene, 0, 20, 11, rt::TraceOptions{}, rt::Rounding::Truncate, 5, 7);
+    rt::PixelTrace t = rt::trace_pixel(scene, 0, 20, 11, rt::TraceOptions{}, rt::Rounding::Truncate, o.sampling, 7);
     t.scene = tmp / "s.json";
     const std::string traced = rt::web::trace(0, 20, 11, 7);
     EXPECT_EQ(traced, rt::trace_json(scene, t));

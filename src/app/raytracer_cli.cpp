@@ -37,7 +37,8 @@ const cli::Program& program() {
         "raytracer", "raytracer 1.0 (" RT_ISA_NAME " kernels)",
         "usage: raytracer [-o DIR] [-j N] [--precision double|float] [--isa LEVEL] [--cull|--no-cull]\n"
         "                 [--rounding truncate|nearest] [--min-weight W] [--stats FILE] [-q] [--strict]\n"
-        "                 [--samples N] [--seed S] [--repeat N] [--max-depth N] [--epsilon-scale F]\n"
+        "                 [--samples N] [--seed S] [--sampler MODE] [--noise-target E [--max-samples N]]\n"
+        "                 [--sample-map FILE] [--repeat N] [--max-depth N] [--epsilon-scale F]\n"
         "                 [--bvh-... (measurements)] [--frames A:B] [--shard K/N] scene.json|scene.xml...\n"
         "       raytracer --trace X,Y [--camera N] [--sample K] [--trace-json FILE] [options] scene.json|scene.xml",
         "Renders every camera of each scene file (JSON, or the course's older XML format when the\n"
@@ -143,11 +144,31 @@ int raytracer_cli(int argc, char** argv) {
                    "take N samples per pixel in every camera, in place of its NumSamples (1.." +
                        std::to_string(kMaxSamples) + "; a quick preview at 4)",
                    o.render.samples, 1, kMaxSamples);
-    cli::add_value(
-        app, "--seed", "S",
-        "the random numbers' seed (0..2^62, default 0): the same seed gives the same image on any "
-        "machine and thread count, another seed independent noise",
-        [&o](const std::string& v) { o.render.seed = uint64_t(cli::whole_number("--seed", v, 0, long(kMaxSeed))); });
+    cli::add_value(app, "--seed", "S",
+                   "the random numbers' seed (0..2^62, default 0): the same seed gives the same image on any "
+                   "machine and thread count, another seed independent noise",
+                   [&o](const std::string& v) {
+                       o.render.sampling.seed = uint64_t(cli::whole_number("--seed", v, 0, long(kMaxSeed)));
+                   });
+    cli::add_choice(
+        app, "--sampler",
+        "random (default: as the course's references), stratified (jittered, every pair of "
+        "dimensions) or sobol (scrambled Sobol points): docs/sampling.md",
+        o.render.sampling.sampler,
+        {{"random", SamplerKind::Random}, {"stratified", SamplerKind::Stratified}, {"sobol", SamplerKind::Sobol}});
+    cli::add_number(app, "--noise-target", "E",
+                    "adaptive sampling: each pixel takes samples until the estimated standard error of its mean "
+                    "is at most E output levels (0..255 after clamping) in every channel, or --max-samples",
+                    o.render.sampling.noise_target, "a positive number of levels up to 255",
+                    [](double e) { return e > 0 && e <= 255; });
+    cli::add_whole(app, "--max-samples", "N",
+                   "--noise-target: the most samples a pixel takes (1.." + std::to_string(kMaxSamples) + ", default " +
+                       std::to_string(kAdaptiveCapFactor) + " times the camera's NumSamples)",
+                   o.render.sampling.max_samples, 1, kMaxSamples);
+    cli::add_text(app, "--sample-map", "FILE",
+                  "write a grey PNG of the samples each pixel took (white: --max-samples, or NumSamples) to FILE; "
+                  "with several images, FILE_<image name>.png each",
+                  o.sample_map, "a file name");
     app.add_flag("-q,--quiet", o.quiet, "print errors only (and no progress line, which is shown only on a terminal)");
     app.add_flag(
         "--strict", o.strict,
@@ -209,7 +230,11 @@ int raytracer_cli(int argc, char** argv) {
         if (!trace && (camera_given || sample_given || !request.json_path.empty()))
             cli::usage_error("--camera, --sample and --trace-json need --trace");
         if (trace && o.repeat != 1) cli::usage_error("--repeat times renders; --trace renders nothing");
-        for (const auto& [flag, out] : {std::pair{"--stats", &stats_path}, {"--trace-json", &request.json_path}})
+        if (o.render.sampling.max_samples > 0 && !(o.render.sampling.noise_target > 0))
+            cli::usage_error("--max-samples caps adaptive sampling: it needs --noise-target");
+        if (trace && !o.sample_map.empty()) cli::usage_error("--sample-map maps a render; --trace renders nothing");
+        for (const auto& [flag, out] :
+             {std::pair{"--stats", &stats_path}, {"--trace-json", &request.json_path}, {"--sample-map", &o.sample_map}})
             if (!out->empty() && is_scene_file(*out))
                 cli::usage_error(std::string(flag) + " " + *out + ": that is a scene file; it is not overwritten");
     });

@@ -180,8 +180,37 @@ std::string rays_text(const Camera& cam, const ImageRecord& r) {
         return std::string(buf);
     };
     const double rays = double(r.render_stats.rays.total());
-    return (cam.samples > 0 ? count_of(size_t(cam.samples), "sample") + " per pixel, " : std::string()) + metric(rays) +
-           " rays, " + metric(r.render.median > 0 ? rays / r.render.median : 0) + " rays/s";
+    std::string samples;
+    if (r.adaptive) {
+        char buf[96];
+        std::snprintf(buf, sizeof buf, "adaptive: %.1f samples per pixel on average, at most %d, ",
+                      double(r.render_stats.samples) / (double(cam.width) * cam.height), r.adaptive);
+        samples = buf;
+    } else if (cam.samples > 0) {
+        samples = count_of(size_t(cam.samples), "sample") + " per pixel, ";
+    }
+    return samples + metric(rays) + " rays, " + metric(r.render.median > 0 ? rays / r.render.median : 0) + " rays/s";
+}
+
+// --sample-map's file for image `image`: the path given, or with several images the
+// path's stem, "_", the image's own stem and the path's extension.
+std::string sample_map_path(const std::string& map, const std::string& image, bool several) {
+    if (!several) return map;
+    const std::filesystem::path m(map), i(image);
+    return (m.parent_path() / (m.stem().string() + "_" + i.stem().string() + m.extension().string())).string();
+}
+
+// The grey map of `counts` (a pixel's samples, row-major): 255 at `cap` samples, 0 at none.
+Image sample_map(const std::vector<uint32_t>& counts, int width, int height, int cap) {
+    Image map;
+    map.width = width;
+    map.height = height;
+    map.rgb.assign(static_cast<size_t>(width) * height * 3, 0);
+    for (size_t i = 0; i < counts.size() && i * 3 < map.rgb.size(); ++i) {
+        const double level = std::min(255.0, std::round(255.0 * counts[i] / cap));
+        map.rgb[3 * i] = map.rgb[3 * i + 1] = map.rgb[3 * i + 2] = static_cast<uint8_t>(level);
+    }
+    return map;
 }
 
 // Renders camera `c` (0-based) of a loaded scene --repeat times and writes it once;
@@ -191,6 +220,7 @@ ImageRecord render_camera(const std::string& scene_path, const LoadedScene& s, s
     const Camera& cam = s.scene.setup.cameras[c];
     make_parent_folders(out);
     RenderOptions ropt = o.render;
+    ropt.count_samples = !o.sample_map.empty();
     app::ProgressLine progress(o.progress && !o.quiet && app::stderr_is_terminal());
     if (progress.enabled()) ropt.progress = [&progress](int done, int total) { progress.update(done, total); };
     ImageRecord r{scene_path, out, c + 1, cam.width, cam.height,          s.figures,
@@ -208,9 +238,17 @@ ImageRecord render_camera(const std::string& scene_path, const LoadedScene& s, s
     }
     r.render = timing_of(renders);
     r.render_rss = app::resident_bytes();
+    const PixelSampling sampling = pixel_sampling(s.scene, c, ropt.sampling);
+    if (sampling.noise_target > 0) r.adaptive = sampling.max_samples;
     const auto w0 = std::chrono::steady_clock::now();
     write_image(img, out);
     r.write = timing_of({seconds_since(w0)});
+    if (!o.sample_map.empty()) {
+        const std::string map = sample_map_path(o.sample_map, out, o.several_files || s.scene.setup.cameras.size() > 1);
+        make_parent_folders(map);
+        write_image(sample_map(r.render_stats.pixel_samples, cam.width, cam.height, std::max(1, sampling.pattern())),
+                    map);
+    }
     if (!o.quiet) {
         const std::string warned = s.warnings == 0 ? "" : ", " + count_of(s.warnings, "warning");
         const std::string runs =
@@ -291,7 +329,10 @@ RunReport run_scenes(const std::vector<std::string>& scene_paths, const RunOptio
     RunReport report;
     MeshCache meshes;
     RunOptions o = options;
-    if (scene_paths.size() > 1 || o.frames) o.meshes = &meshes;
+    if (scene_paths.size() > 1 || o.frames) {
+        o.meshes = &meshes;
+        o.several_files = true;
+    }
     for (const std::string& path : scene_paths) report.ok = run_scene(path, o, report.images) && report.ok;
     const MeshCache::Counts n = meshes.counts();
     if (o.meshes && !o.quiet && n.ply_reads > 0)
@@ -314,13 +355,13 @@ int run_trace(const std::string& scene_path, const RunOptions& o, const PixelTra
                          std::to_string(cam.width) + "x" + std::to_string(cam.height) + " image of camera " +
                          std::to_string(req.camera) + " (x 0.." + std::to_string(cam.width - 1) + ", y 0.." +
                          std::to_string(cam.height - 1) + ")");
-    const int samples = std::max(1, cam.samples);
+    const int samples = std::max(1, pixel_sampling(s->scene, req.camera - 1, o.render.sampling).pattern());
     if (req.sample >= samples)
         throw UsageError("--sample " + std::to_string(req.sample) + ": camera " + std::to_string(req.camera) +
                          " takes " + count_of(size_t(samples), "sample") + " per pixel (0.." +
                          std::to_string(samples - 1) + ")");
-    PixelTrace t = trace_pixel(s->scene, req.camera - 1, req.x, req.y, o.render.trace, o.render.rounding, o.render.seed,
-                               req.sample);
+    PixelTrace t = trace_pixel(s->scene, req.camera - 1, req.x, req.y, o.render.trace, o.render.rounding,
+                               o.render.sampling, req.sample);
     t.scene = scene_path;
     std::fputs(trace_text(s->scene, t).c_str(), stdout);
     if (req.json_path.empty()) return 0;

@@ -43,7 +43,7 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
     const int tiles = all_tiles > part ? (all_tiles - part + parts - 1) / parts : 0;
     std::atomic<int> next{0};
     const TraceOptions& topt = options.trace;
-    const PixelSampling sampling = pixel_sampling(scene, camera_index, options.seed);
+    const PixelSampling sampling = pixel_sampling(scene, camera_index, options.sampling);
     const bool watch = static_cast<bool>(options.progress);
 
     int threads = options.threads > 0 ? options.threads : static_cast<int>(std::thread::hardware_concurrency());
@@ -55,9 +55,17 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
     std::condition_variable finished_cv;
     int finished = 0;
     std::vector<RayCounts> rays(static_cast<size_t>(threads));
+    std::vector<uint64_t> samples_taken(static_cast<size_t>(threads), 0);
+    // Each pixel's sample count, when asked for: every pixel written by one worker.
+    uint32_t* counts = nullptr;
+    if (stats && options.count_samples) {
+        stats->pixel_samples.assign(static_cast<size_t>(cam.width) * cam.height, 0);
+        counts = stats->pixel_samples.data();
+    }
 
     auto work = [&](int worker) {
         TraceCache cache;  // per thread
+        uint64_t taken = 0;
         for (int k; (k = next.fetch_add(1, std::memory_order_relaxed)) < tiles;) {
             const int tile = part + k * parts;
             const int x0 = (tile % tiles_x) * kTile, y0 = (tile / tiles_x) * kTile;
@@ -71,10 +79,15 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
                 rgb[1] = quantize(c.y, options.rounding);
                 rgb[2] = quantize(c.z, options.rounding);
             };
-            if (sampling.samples > 1) {
+            if (sampling.samples > 1 || sampling.noise_target > 0) {
                 // Distribution ray tracing: each pixel's samples (pixel_samples.h).
                 for (int y = y0; y < y1; ++y)
-                    for (int x = x0; x < x1; ++x) put(x, y, sample_pixel(scene, cam, sampling, x, y, topt, &cache));
+                    for (int x = x0; x < x1; ++x) {
+                        const PixelValue v = sample_pixel(scene, cam, sampling, x, y, topt, &cache);
+                        put(x, y, v.radiance);
+                        taken += uint64_t(v.samples);
+                        if (counts) counts[static_cast<size_t>(y) * cam.width + x] = uint32_t(v.samples);
+                    }
             } else
                 for (int y = y0; y < y1; y += kPacketH)
                     for (int x = x0; x < x1; x += kPacketW) {
@@ -106,6 +119,7 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
             if (watch) done.fetch_add(1, std::memory_order_relaxed);
         }
         rays[static_cast<size_t>(worker)] = cache.rays;
+        samples_taken[static_cast<size_t>(worker)] = taken;
         if (watch) {
             {
                 std::lock_guard<std::mutex> lock(finished_mutex);
@@ -152,8 +166,11 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
     for (HelperThread& t : pool) t.join();
 
     if (stats) {
+        std::vector<uint32_t> pixel_samples = std::move(stats->pixel_samples);
         *stats = RenderStats{};
+        stats->pixel_samples = std::move(pixel_samples);
         for (const RayCounts& r : rays) stats->rays += r;
+        for (const uint64_t n : samples_taken) stats->samples += n;
         stats->threads = threads;
         stats->tiles = tiles;
     }

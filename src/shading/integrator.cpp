@@ -120,10 +120,7 @@ struct Integrator {
         const SceneSetup& setup = s.setup;
         const Light& source = setup.lights[li];
         Real xi1 = 0, xi2 = 0;
-        if (source.sampled()) {
-            xi1 = stream.next();
-            xi2 = stream.next();
-        }
+        if (source.sampled()) stream.next2(xi1, xi2);
         const LightSample light = sample_light(source, p, xi1, xi2);
         const Vec3 to_light = light.from - p;
         term.light = li;
@@ -287,7 +284,8 @@ struct Integrator {
                 r.ray.time = ray.time;
                 const Vec3 ideal = r.ray.dir;
                 if (m.roughness > 0) {
-                    const Real xi1 = stream.next(), xi2 = stream.next();
+                    Real xi1, xi2;
+                    stream.next2(xi1, xi2);
                     r.ray.dir = perturb_direction(ideal, m.roughness, xi1, xi2);
                 }
                 const Real w = weight * max_component(beer) * max_component(r.factor);

@@ -20,7 +20,7 @@ const char* ray_kind_name(RayKind kind) {
 }
 
 PixelTrace trace_pixel(const Scene& scene, size_t camera, int x, int y, const TraceOptions& options, Rounding rounding,
-                       uint64_t seed, int sample) {
+                       const SamplingOptions& sampling_options, int sample) {
     PixelTrace t;
     t.camera = camera;
     t.x = x;
@@ -33,11 +33,12 @@ PixelTrace trace_pixel(const Scene& scene, size_t camera, int x, int y, const Tr
     // change a result.
     TraceCache cache;
     const Camera& cam = scene.setup.cameras.at(camera);
-    const PixelSampling sampling = pixel_sampling(scene, camera, seed);
+    const PixelSampling sampling = pixel_sampling(scene, camera, sampling_options);
     CameraSample cs = camera_sample(cam, sampling, x, y, sample);
     t.samples = sampling.samples;
     t.sample = sample;
-    t.seed = seed;
+    t.seed = sampling.seed;
+    t.sampler = sampling.sampler;
     t.dx = cs.dx;
     t.dy = cs.dy;
     t.lx = cs.lx;
@@ -45,7 +46,14 @@ PixelTrace trace_pixel(const Scene& scene, size_t camera, int x, int y, const Tr
     t.lens = cam.aperture > 0;
     const Vec3 c = trace_primary(scene, cs.ray, options, &cache, &t.root, &cs.stream);
     t.clamped = {clamp_channel(c.x), clamp_channel(c.y), clamp_channel(c.z)};
-    t.mean = sampling.samples > 1 ? sample_pixel(scene, cam, sampling, x, y, options, &cache) : c;
+    if (sampling.samples > 1 || sampling.noise_target > 0) {
+        const PixelValue v = sample_pixel(scene, cam, sampling, x, y, options, &cache);
+        t.mean = v.radiance;
+        t.taken = v.samples;
+    } else {
+        t.mean = c;
+        t.taken = 1;
+    }
     t.pixel[0] = quantize(t.mean.x, rounding);
     t.pixel[1] = quantize(t.mean.y, rounding);
     t.pixel[2] = quantize(t.mean.z, rounding);

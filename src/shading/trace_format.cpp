@@ -358,18 +358,18 @@ std::string trace_text(const Scene& scene, const PixelTrace& t) {
                   num(scene.setup.shadow_ray_epsilon));
     if (t.samples > 0) {
         w.line(0, "sample " + std::to_string(t.sample) + " of " + std::to_string(t.samples) + " (--sample, seed " +
-                      std::to_string(t.seed) + "): at (" + num(t.dx) + ", " + num(t.dy) +
-                      ") in the pixel from its top-left corner" +
+                      std::to_string(t.seed) + ", sampler " + sampler_name(t.sampler) + "): at (" + num(t.dx) + ", " +
+                      num(t.dy) + ") in the pixel from its top-left corner" +
                       (t.lens ? ", lens point (" + num(t.lx) + ", " + num(t.ly) + ") of the aperture" : "") +
                       (scene.geometry.moves ? ", time " + num(t.root.ray.time) : ""));
     }
     w.ray(t.root, 0, false);
-    if (t.samples > 1)
+    if (t.taken > 1)
         w.line(0, "this sample: " + vec(t.clamped) + " clamped, " + vec(t.root.radiance) + " before clamping");
     w.line(0, "pixel [" + pixel_text(t.pixel) + "] after rounding (" + rounding_name(t.rounding) + "), from " +
-                  (t.samples > 1 ? "the mean of its " + std::to_string(t.samples) + " samples " + vec(t.mean) +
-                                       " (clamped after averaging)"
-                                 : vec(t.clamped) + " clamped, " + vec(t.root.radiance) + " before clamping"));
+                  (t.taken > 1 ? "the mean of its " + std::to_string(t.taken) + " samples " + vec(t.mean) +
+                                     " (clamped after averaging)"
+                               : vec(t.clamped) + " clamped, " + vec(t.root.radiance) + " before clamping"));
     return w.take();
 }
 
@@ -396,6 +396,8 @@ std::string trace_json(const Scene& scene, const PixelTrace& t) {
                                     ? Object()
                                           .field("index", std::to_string(t.sample))
                                           .field("seed", std::to_string(t.seed))
+                                          .field("sampler", jstr(sampler_name(t.sampler)))
+                                          .field("taken", std::to_string(t.taken))
                                           .field("pixel_offset", "[" + jnum(t.dx) + ", " + jnum(t.dy) + "]")
                                           .field("lens", t.lens ? "[" + jnum(t.lx) + ", " + jnum(t.ly) + "]" : "null")
                                           .field("time", jnum(t.root.ray.time))

@@ -74,7 +74,7 @@ void read_options(const std::string& text, RenderOptions& r) {
         } else if (k == "samples" && v.is_number_unsigned() && v.get<uint64_t>() <= uint64_t(kMaxSamples)) {
             r.samples = v.get<int>();
         } else if (k == "seed" && whole_number(v, kMaxSeed)) {
-            r.seed = *whole_number(v, kMaxSeed);
+            r.sampling.seed = *whole_number(v, kMaxSeed);
         } else {
             throw UsageError("options: " + k + ": unknown option or bad value " + v.dump());
         }
@@ -159,7 +159,7 @@ std::string trace(int camera, int x, int y, int sample) {
                                                 std::to_string(samples - 1) + ")"}}
                 .dump();
         PixelTrace t = trace_pixel(*s.scene, static_cast<size_t>(camera), x, y, s.render.trace, s.render.rounding,
-                                   s.render.seed, sample);
+                                   s.render.sampling, sample);
         t.scene = s.path;
         return trace_json(*s.scene, t);
     } catch (const std::exception& e) {

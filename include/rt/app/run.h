@@ -26,6 +26,10 @@ struct RunOptions {
     int repeat = 1;          // --repeat: each scene loaded, built and each image rendered this
                              // many times, for timing; every image is written once
     bool frames = false;     // --frames or --shard picked the files: an animation's frames
+    // --sample-map: each image's samples per pixel as a grey PNG at this path (with several
+    // images, sample_map_path names each).
+    std::string sample_map;
+    bool several_files = false;  // set by run_scenes: more than one scene file, or frames
     // Set by run_scenes for several files or for frames: the meshes they share, each PLY
     // file parsed and each mesh's BVH built once (rt/scene_build/mesh_cache.h).
     MeshCache* meshes = nullptr;
@@ -81,6 +85,7 @@ struct ImageRecord {
     uint64_t peak_rss = 0;    // bytes, of the whole process so far
     uint64_t render_rss = 0;  // bytes resident when the render ended: the scene's render data
                               // (what loading freed is returned to the system first)
+    int adaptive = 0;         // adaptive sampling: its cap of samples per pixel; 0: not adaptive
 };
 
 struct RunReport {

@@ -1,6 +1,8 @@
 // Rendering: one camera of a built scene into an Image, on a pool of threads.
 #pragma once
+#include <cstdint>
 #include <functional>
+#include <vector>
 
 #include "rt/geometry/scene.h"
 #include "rt/image/image.h"
@@ -19,10 +21,11 @@ struct RenderOptions {
     int threads = 0;     // 0: all hardware threads
     TraceOptions trace;  // back-face culling (spec 2.9) and the minimum ray weight (rt/shading/shading.h)
     Rounding rounding = Rounding::Truncate;
-    int max_depth = -1;            // >= 0 (at most kMaxRecursionDepth): overrides the scene's MaxRecursionDepth
-    double epsilon_scale = 1;      // multiplies the scene's ShadowRayEpsilon
-    int samples = 0;               // > 0: overrides every camera's NumSamples (--samples)
-    uint64_t seed = kDefaultSeed;  // the random numbers' seed (--seed; rt/core/random.h)
+    int max_depth = -1;          // >= 0 (at most kMaxRecursionDepth): overrides the scene's MaxRecursionDepth
+    double epsilon_scale = 1;    // multiplies the scene's ShadowRayEpsilon
+    int samples = 0;             // > 0: overrides every camera's NumSamples (--samples)
+    SamplingOptions sampling;    // seed, sampler, adaptive sampling (rt/shading/pixel_samples.h)
+    bool count_samples = false;  // RenderStats::pixel_samples wanted (--sample-map)
     // When set, called on the calling thread about every `progress_interval` seconds
     // while the image renders, with the tiles finished so far and the tile count (never
     // after the last tile: a render shorter than one interval makes no call). The
@@ -41,6 +44,10 @@ struct RenderStats {
     RayCounts rays;
     int threads = 0;  // threads that rendered
     int tiles = 0;    // 16x16 tiles
+    // Samples taken in all (0 for images without NumSamples or adaptive sampling), and,
+    // with RenderOptions::count_samples, each pixel's, row-major (0 where not rendered).
+    uint64_t samples = 0;
+    std::vector<uint32_t> pixel_samples;
 };
 
 // The overrides of `options` (max_depth, epsilon_scale, samples) applied to a built scene; the

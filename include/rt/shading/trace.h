@@ -97,16 +97,18 @@ struct PixelTrace {
     // fell, and the pixel's mean over all of them, which the image holds.
     int samples = 0;  // 0: the centre ray, no samples
     int sample = 0;
+    int taken = 1;  // the samples the pixel's mean is of (adaptive sampling: its own count)
     uint64_t seed = 0;
+    SamplerKind sampler = SamplerKind::Random;
     Real dx = Real(0.5), dy = Real(0.5), lx = Real(0.5), ly = Real(0.5);
     bool lens = false;
     Vec3 mean;
 };
 
 // Traces pixel (x, y) of camera `camera` (0-based; both in range) as render() does: its
-// sample `sample` (0 <= sample < max(1, samples)) under `seed`.
+// sample `sample` (0 <= sample < max(1, samples)) under `sampling`.
 PixelTrace trace_pixel(const Scene& scene, size_t camera, int x, int y, const TraceOptions& options, Rounding rounding,
-                       uint64_t seed = kDefaultSeed, int sample = 0);
+                       const SamplingOptions& sampling = {}, int sample = 0);
 
 // The tree as indented text, and as JSON (numbers as %.17g; the 8-bit value at the top
 // as "pixel": [r, g, b]).

@@ -1,0 +1,69 @@
+// The point sets of the patterned samplers (rt/core/random.h, docs/sampling.md): a pixel's
+// N samples placed together in each pair of dimensions, so that they cover the square more
+// evenly than N independent points do. Pure integer functions of (index, seed): the same
+// points on every CPU and build.
+#pragma once
+#include <cstdint>
+
+namespace rt {
+
+inline uint32_t reverse_bits(uint32_t v) {
+    v = ((v >> 1) & 0x55555555u) | ((v & 0x55555555u) << 1);
+    v = ((v >> 2) & 0x33333333u) | ((v & 0x33333333u) << 2);
+    v = ((v >> 4) & 0x0f0f0f0fu) | ((v & 0x0f0f0f0fu) << 4);
+    v = ((v >> 8) & 0x00ff00ffu) | ((v & 0x00ff00ffu) << 8);
+    return (v >> 16) | (v << 16);
+}
+
+// A nested uniform (Owen) scramble of a 32-bit fraction, keyed by `seed`: each bit is
+// flipped or not depending only on the seed and the bits above it, so points that share
+// their top k bits still do after it and an elementary interval's points stay in one
+// elementary interval. Done on the reversed bits, where "above" becomes "below": adding,
+// multiplying by an odd number and xoring with a multiple by an even number all change
+// a bit only through the bits below it.
+inline uint32_t nested_scramble(uint32_t v, uint32_t seed) {
+    v = reverse_bits(v);
+    v += seed;
+    v ^= v * 0x6a09e666u;
+    v *= (seed >> 7) | 1u;
+    v ^= v * 0xbb67ae84u;
+    v += seed ^ 0x3c6ef372u;
+    v ^= v * 0xa54ff53au;
+    return reverse_bits(v);
+}
+
+// Point `i` of the first two dimensions of Sobol's sequence, as 32-bit fractions: the
+// van der Corput radical inverse, and the dimension whose direction numbers are Pascal's
+// triangle mod 2. Its first 2^k points are a (0, k, 2)-net: one point in every
+// elementary interval of area 2^-k.
+inline void sobol2(uint32_t i, uint32_t& a, uint32_t& b) {
+    a = reverse_bits(i);
+    b = 0;
+    for (uint32_t v = 0x80000000u; i; i >>= 1, v ^= v >> 1)
+        if (i & 1u) b ^= v;
+}
+
+// A bijection of [0, n) keyed by `seed` (n <= 2^31): a bijection of the next power of two
+// (invertible mixing steps masked to its bits), walked until it lands inside [0, n).
+inline uint32_t permute_index(uint32_t i, uint32_t n, uint32_t seed) {
+    if (n <= 1) return 0;
+    uint32_t mask = n - 1;
+    mask |= mask >> 1;
+    mask |= mask >> 2;
+    mask |= mask >> 4;
+    mask |= mask >> 8;
+    mask |= mask >> 16;
+    const uint32_t shift = mask > 3 ? 2 : 1;
+    do {
+        i ^= seed & mask;
+        i = (i * 0x9e3779b1u) & mask;
+        i ^= i >> shift;
+        i = (i + (seed >> 9)) & mask;
+        i = (i * (((seed >> 3) & mask) | 1u)) & mask;
+        i ^= i >> shift;
+        i = (i * 0x85ebca6bu) & mask;
+    } while (i >= n);
+    return i;
+}
+
+}  // namespace rt
