@@ -240,6 +240,7 @@ ImageRecord render_camera(const std::string& scene_path, const LoadedScene& s, s
     r.render_rss = app::resident_bytes();
     const PixelSampling sampling = pixel_sampling(s.scene, c, ropt.sampling);
     if (sampling.noise_target > 0) r.adaptive = sampling.max_samples;
+    r.sampler = sampler_name(sampling.sampler);
     const auto w0 = std::chrono::steady_clock::now();
     write_image(img, out);
     r.write = timing_of({seconds_since(w0)});

@@ -121,6 +121,12 @@ std::string stats_json(const std::vector<ImageRecord>& images, const std::string
                      {"refraction", rays.refraction},
                      {"total", rays.total()}};
         j["rays_per_second"] = r.render.median > 0 ? double(rays.total()) / r.render.median : 0.0;
+        // Samples: what each pixel averaged (adaptive sampling: a mean over the pixels).
+        const double pixels = double(r.width) * r.height;
+        j["samples"] = {{"sampler", r.sampler},
+                        {"per_pixel", r.render_stats.samples > 0 ? double(r.render_stats.samples) / pixels : 1.0},
+                        {"total", r.render_stats.samples},
+                        {"adaptive_cap", r.adaptive}};
         j["bvh"] = {{"nodes", f.bvh_nodes},
                     {"depth", f.bvh_depth},
                     {"max_leaf", r.bvh.max_leaf},

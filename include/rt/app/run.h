@@ -86,6 +86,7 @@ struct ImageRecord {
     uint64_t render_rss = 0;  // bytes resident when the render ended: the scene's render data
                               // (what loading freed is returned to the system first)
     int adaptive = 0;         // adaptive sampling: its cap of samples per pixel; 0: not adaptive
+    std::string sampler;      // --sampler's name
 };
 
 struct RunReport {

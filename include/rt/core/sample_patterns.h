@@ -32,15 +32,32 @@ inline uint32_t nested_scramble(uint32_t v, uint32_t seed) {
     return reverse_bits(v);
 }
 
+// The second dimension of Sobol's sequence (direction numbers: Pascal's triangle mod 2,
+// v_0 = 2^31, v_j+1 = v_j ^ v_j >> 1) as the XOR of the direction numbers of i's set bits,
+// by byte: kSobol1[b][x] is the XOR over the set bits of x at byte b.
+struct Sobol1Table {
+    uint32_t t[4][256];
+    constexpr Sobol1Table() : t{} {
+        uint32_t v[32] = {};
+        v[0] = 0x80000000u;
+        for (int j = 1; j < 32; ++j) v[j] = v[j - 1] ^ (v[j - 1] >> 1);
+        for (int b = 0; b < 4; ++b)
+            for (int x = 0; x < 256; ++x) {
+                uint32_t r = 0;
+                for (int j = 0; j < 8; ++j)
+                    if (x >> j & 1) r ^= v[8 * b + j];
+                t[b][x] = r;
+            }
+    }
+};
+inline constexpr Sobol1Table kSobol1{};
+
 // Point `i` of the first two dimensions of Sobol's sequence, as 32-bit fractions: the
-// van der Corput radical inverse, and the dimension whose direction numbers are Pascal's
-// triangle mod 2. Its first 2^k points are a (0, k, 2)-net: one point in every
-// elementary interval of area 2^-k.
+// van der Corput radical inverse, and the dimension above. Its first 2^k points are a
+// (0, k, 2)-net: one point in every elementary interval of area 2^-k.
 inline void sobol2(uint32_t i, uint32_t& a, uint32_t& b) {
     a = reverse_bits(i);
-    b = 0;
-    for (uint32_t v = 0x80000000u; i; i >>= 1, v ^= v >> 1)
-        if (i & 1u) b ^= v;
+    b = kSobol1.t[0][i & 0xff] ^ kSobol1.t[1][i >> 8 & 0xff] ^ kSobol1.t[2][i >> 16 & 0xff] ^ kSobol1.t[3][i >> 24];
 }
 
 // A bijection of [0, n) keyed by `seed` (n <= 2^31): a bijection of the next power of two
