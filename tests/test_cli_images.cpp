@@ -10,10 +10,12 @@
 //   fails, the other cameras' images are still written, nothing is left behind.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -48,6 +50,32 @@ TEST(Cli, RendersOnePngPerCameraIntoCurrentDirectory) {
     EXPECT_TRUE(is_png(tmp / "second_cam.png", 16, 8));
     EXPECT_EQ(list_files(tmp.path()), (std::vector<std::string>{"first_cam.png", "scene.json", "second_cam.png"}))
         << "unexpected or leftover files" << dump(r);
+}
+
+TEST(Cli, SampleMapOfOneImageAndOfSeveral) {
+    TempDir tmp;
+    write_scene(tmp.path(), "one.json", sample_scene("one.png", "16 16"));
+    write_scene(tmp.path(), "two.json", sample_scene("two.png", "8 12"));
+    // One image: the map at the path given; with a cap of 64, each pixel's level is
+    // 255 n / 64 for a count n of whole packets of 16, and at least one packet.
+    RunResult r = run_raytracer(
+        {"-q", "--samples", "8", "--noise-target", "2", "--max-samples", "64", "--sample-map", "m/map.png", "one.json"},
+        tmp.path());
+    ASSERT_EQ(r.exit_code, 0) << dump(r);
+    rt::Image map;
+    ASSERT_TRUE(load_png(tmp / "m/map.png", map));
+    ASSERT_EQ(map.width, 16);
+    ASSERT_EQ(map.height, 16);
+    std::set<int> levels(map.rgb.begin(), map.rgb.end());
+    for (int level : levels) EXPECT_TRUE(level == 64 || level == 128 || level == 191 || level == 255) << level;
+    // Several images: one map each, named after its image.
+    r = run_raytracer({"-q", "--samples", "8", "--sample-map", "map.png", "one.json", "two.json"}, tmp.path());
+    ASSERT_EQ(r.exit_code, 0) << dump(r);
+    EXPECT_TRUE(is_png(tmp / "map_one.png", 16, 16));
+    EXPECT_TRUE(is_png(tmp / "map_two.png", 8, 12));
+    // Without adaptive sampling every pixel takes its NumSamples: white.
+    ASSERT_TRUE(load_png(tmp / "map_two.png", map));
+    EXPECT_EQ(*std::min_element(map.rgb.begin(), map.rgb.end()), 255);
 }
 
 TEST(Cli, RendersSeveralSceneFiles) {

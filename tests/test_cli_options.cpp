@@ -97,6 +97,9 @@ TEST(Cli, EveryOptionTakesItsValueInEverySpelling) {
         {{"--min-weight", "0.5"}, {"--min-weight=0.5"}},
         {{"--precision", "float"}, {"--precision=float"}},
         {{"--precision", "double"}, {"--precision=double"}},
+        {{"--samples", "4", "--sampler", "sobol"}, {"--samples=4", "--sampler=sobol"}},
+        {{"--samples", "4", "--noise-target", "3", "--max-samples", "32"},
+         {"--samples=4", "--noise-target=3", "--max-samples=32"}},
     };
     for (const auto& same : spellings) {
         std::vector<std::string> stats;
@@ -165,6 +168,13 @@ TEST(Cli, UsageErrorsAreOneLinePlusTheUsage) {
         {{"--stats", "scene.json", "other.json"}, "--stats scene.json: that is a scene file; it is not overwritten"},
         {{"--trace", "1,1", "--trace-json", "scene.json", "scene.json"},
          "--trace-json scene.json: that is a scene file; it is not overwritten"},
+        {{"--sampler", "halton", "scene.json"}, "--sampler takes random, stratified or sobol, got 'halton'"},
+        {{"--noise-target", "0", "scene.json"}, "--noise-target needs a positive number of levels up to 255, got '0'"},
+        {{"--max-samples", "64", "scene.json"}, "--max-samples caps adaptive sampling: it needs --noise-target"},
+        {{"--sample-map", "scene.json", "other.json"},
+         "--sample-map scene.json: that is a scene file; it is not overwritten"},
+        {{"--trace", "1,1", "--sample-map", "m.png", "scene.json"},
+         "--sample-map maps a render; --trace renders nothing"},
     };
     for (const auto& [args, message] : cases) {
         RunResult r = run_raytracer(args, tmp.path());

@@ -63,6 +63,26 @@ TEST(SamplePatterns, PermuteIndexIsABijection) {
         }
 }
 
+TEST(SamplePatterns, SobolSecondDimensionIsItsDirectionNumbersXored) {
+    // Bit by bit from the recurrence v_0 = 2^31, v_j+1 = v_j ^ v_j >> 1: the table's sum.
+    for (uint32_t i : {0u, 1u, 2u, 3u, 255u, 256u, 0x12345678u, 0xffffffffu}) {
+        uint32_t want = 0, v = 0x80000000u;
+        for (uint32_t k = i; k; k >>= 1, v ^= v >> 1)
+            if (k & 1u) want ^= v;
+        uint32_t a, b;
+        rt::sobol2(i, a, b);
+        EXPECT_EQ(b, want) << i;
+        EXPECT_EQ(a, rt::reverse_bits(i));
+    }
+    // The first points by hand: (0, 0), (1/2, 1/2), (1/4, 3/4), (3/4, 1/4).
+    const uint32_t want_b[] = {0u, 0x80000000u, 0xc0000000u, 0x40000000u};
+    for (uint32_t i = 0; i < 4; ++i) {
+        uint32_t a, b;
+        rt::sobol2(i, a, b);
+        EXPECT_EQ(b, want_b[i]) << i;
+    }
+}
+
 TEST(SamplePatterns, SobolPrefixesAreNetsInEveryPairAndPixel) {
     // 16 points: one in each of the 16 cells of every elementary shape (1x16, 2x8, 4x4,
     // 8x2, 16x1): a (0, 4, 2)-net, which scrambling and shuffling keep.

@@ -36,6 +36,9 @@ Studies (each switch is a raytracer option, see README "Measurements"):
                time against the pixels that still change from depth d-1 to d
   bvh          --bvh-leaf, --bvh-bins, --bvh-split median on the scenes of 5000+ triangles
                (and a generated 1M-triangle mesh): build time against render time
+  assignment 3 every complete hw3 scene: error against a converged image and the reference
+               over samples and time, the samplers, adaptive sampling, each feature's cost
+               (report_convergence.py; with --rtdiff)
 """
 # This file is the command line, the configurations and the order of the studies' runs;
 # beside it: report_common.py (repository, messages), report_scenes.py (the scene sets),
@@ -49,6 +52,8 @@ import sys
 import time
 
 from report_common import REPO, log, loud
+from report_convergence import Study, hw3_scenes
+from report_convergence_doc import section, svg_plot
 from report_runner import Differ, Runner
 from report_scenes import big_scene, far_scenes, official_scenes, our_scenes
 from report_write import Writeup
@@ -58,6 +63,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     ap.add_argument("--bin", required=True, help="the raytracer")
     ap.add_argument("--imgdiff", required=True)
+    ap.add_argument("--rtdiff", default="", help="rtdiff, for assignment 3's section (without: no section)")
     ap.add_argument("--gen-mesh", default="")
     ap.add_argument("--out", default=os.path.join(REPO, "report"))
     ap.add_argument("--work", default=os.path.join(REPO, "build", "report"))
@@ -158,6 +164,16 @@ def main():
     w.epsilon()
     w.depth()
     w.bvh()
+    # --- 6. assignment 3: samples, time and error (report_convergence.py) -----------------
+    if a.rtdiff and official:
+        hw3 = hw3_scenes(shared)
+        study = Study(argparse.Namespace(bin=copy, rtdiff=a.rtdiff, work=a.work, threads=a.threads,
+                                         timeout=a.timeout, quick=a.quick, converged=4 if a.quick else 8))
+        results = [study.scene_study(s) for s in hw3]
+        section(w.doc, results, 4 if a.quick else 8)
+        with open(os.path.join(a.out, "convergence.svg"), "w", encoding="utf-8") as f:
+            f.write(svg_plot(results))
+        w.data["convergence"] = results
     return w.write()
 
 

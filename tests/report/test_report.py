@@ -7,8 +7,46 @@ import sys
 import unittest
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import report_convergence  # noqa: E402
+import report_convergence_doc  # noqa: E402
 import report_doc  # noqa: E402
 import report_timing  # noqa: E402
+
+
+class FeatureSwitches(unittest.TestCase):
+    SCENE = {"Scene": {
+        "Cameras": {"Camera": {"NumSamples": "4", "ApertureSize": "0.5", "FocusDistance": "3"}},
+        "Lights": {"AreaLight": {"Position": "0 5 0", "Size": "2", "Radiance": "10 20 30"}},
+        "Materials": {"Material": [{"_id": "1"}, {"_id": "2", "Roughness": "0.1"}]},
+        "Objects": {"Sphere": {"MotionBlur": "1 0 0"}, "Mesh": [{"Faces": {"_plyFile": "ply/a.ply"}}]}}}
+
+    def test_each_feature_found_and_turned_off(self):
+        switches = dict(report_convergence.feature_switches(self.SCENE))
+        self.assertEqual(sorted(switches), ["area light (as a point light)", "lens", "motion blur", "roughness"])
+        import json
+        for name, change in switches.items():
+            doc = json.loads(json.dumps(self.SCENE))
+            change(doc["Scene"])
+            self.assertEqual(report_convergence.feature_switches(doc).__len__(), 3, name)
+        doc = json.loads(json.dumps(self.SCENE))
+        switches["area light (as a point light)"](doc["Scene"])
+        # The point light carries the area light's power: radiance times its area (2 x 2).
+        self.assertEqual(doc["Scene"]["Lights"]["PointLight"][0]["Intensity"], "40.0 80.0 120.0")
+
+    def test_ply_paths_made_absolute(self):
+        import json
+        doc = json.loads(json.dumps(self.SCENE))
+        report_convergence.absolute_paths(doc, "/x/scenes")
+        self.assertEqual(doc["Scene"]["Objects"]["Mesh"][0]["Faces"]["_plyFile"], "/x/scenes/ply/a.ply")
+
+    def test_plot_is_well_formed_svg(self):
+        import xml.etree.ElementTree as ET
+        run = {"cpu": 1.0, "vs_converged": {"rmse": 4.0, "blocks": 1.0}}
+        result = {"scene": "s.json", "spp": [dict(run, n=1), dict(run, n=4, cpu=4.0, vs_converged={"rmse": 2.0})],
+                  "samplers": {"random": run, "stratified": run, "sobol": run},
+                  "adaptive": [dict(run, target=2, spp=3.0)]}
+        root = ET.fromstring(report_convergence_doc.svg_plot([result]))
+        self.assertTrue(root.tag.endswith("svg"))
 
 
 class RatioText(unittest.TestCase):
