@@ -26,17 +26,25 @@ def shared_dir():
 HW3_CHECK_SAMPLES = "4"
 
 
+def complete_rows(shared, hw):
+    """(scene relative to its folder, image, reference relative to shared) of every row of
+    assignment `hw`'s MANIFEST.tsv whose inputs are complete: a row per image."""
+    out = []
+    with open(os.path.join(shared, "scenes", hw, "MANIFEST.tsv"), encoding="utf-8") as f:
+        for line in f:
+            cols = line.rstrip("\n").split("\t")
+            if not line.startswith("#") and len(cols) >= 4 and cols[3].startswith("complete"):
+                out.append((cols[0], cols[1], cols[2]))
+    return out
+
+
 def complete_scenes(shared, assignments=("hw1", "hw2")):
     """(assignment, path relative to its scene folder) of every complete scene of `assignments`."""
     out = []
     for hw in assignments:
-        with open(os.path.join(shared, "scenes", hw, "MANIFEST.tsv"), encoding="utf-8") as f:
-            for line in f:
-                cols = line.rstrip("\n").split("\t")
-                # A scene of several cameras has a line per image: rendered once.
-                if not line.startswith("#") and len(cols) >= 4 and cols[3].startswith("complete") and \
-                        (hw, cols[0]) not in out:
-                    out.append((hw, cols[0]))
+        for rel, _, _ in complete_rows(shared, hw):
+            if (hw, rel) not in out:  # a scene of several cameras has a row per image: once
+                out.append((hw, rel))
     return out
 
 

@@ -22,6 +22,9 @@ import sys
 import tempfile
 import time
 
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # tests/
+from shared_scenes import complete_rows  # noqa: E402
+
 HERE = os.path.dirname(os.path.abspath(__file__))
 REPO = os.path.dirname(os.path.dirname(HERE))
 
@@ -57,15 +60,7 @@ def timed_render(rt, scene, out, runs, extra=()):
 
 
 def hw2_scenes(shared):
-    manifest = os.path.join(shared, "scenes", "hw2", "MANIFEST.tsv")
-    out = []
-    with open(manifest, encoding="utf-8") as f:
-        for line in f:
-            cols = line.rstrip("\n").split("\t")
-            if line.startswith("#") or len(cols) < 4 or not cols[3].startswith("complete"):
-                continue
-            out.append(os.path.join(shared, "scenes", "hw2", cols[0]))
-    return out
+    return [os.path.join(shared, "scenes", "hw2", rel) for rel, _, _ in complete_rows(shared, "hw2")]
 
 
 def stress_scenes(scene_dir, grid, single=True):

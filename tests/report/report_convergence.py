@@ -27,6 +27,9 @@ import sys
 
 from report_common import REPO, log, loud
 
+sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))  # tests/
+from shared_scenes import complete_rows  # noqa: E402
+
 SPP = [1, 4, 16, 64, 256]
 SAMPLERS = ["random", "stratified", "sobol"]
 # Adaptive sampling: noise targets tried from the loosest down, until the error is no more
@@ -47,16 +50,8 @@ class Hw3Scene:
 
 
 def hw3_scenes(shared):
-    manifest = os.path.join(shared, "scenes", "hw3", "MANIFEST.tsv")
-    out = []
-    with open(manifest, encoding="utf-8") as f:
-        for line in f:
-            cols = line.rstrip("\n").split("\t")
-            if line.startswith("#") or len(cols) < 4 or not cols[3].startswith("complete"):
-                continue
-            out.append(Hw3Scene(cols[0], os.path.join(shared, "scenes", "hw3", cols[0]), cols[1],
-                                os.path.join(shared, cols[2])))
-    return out
+    return [Hw3Scene(rel, os.path.join(shared, "scenes", "hw3", rel), image, os.path.join(shared, ref))
+            for rel, image, ref in complete_rows(shared, "hw3")]
 
 
 class Study:
