@@ -3,9 +3,9 @@
 # workflow step 4 (Animate), run as written from the repository's folder over their first 8 frames:
 # the GNU parallel lines (not the --sshlogin ones, which need other hosts) and the
 # ./raytracer lines given scene files. Each runs with `-o frames` pointed at a temporary
-# folder and `--frames 0:7` added; it must exit 0 and write 8 frames. Exit status 0 when
-# every command did, 1 otherwise (also when the pages have no such command, or without
-# ../shared, whose scenes the commands name).
+# folder and `--frames 0:7` added (and `--samples 1` when it names assignment 3's scenes); it
+# must exit 0 and write 8 frames. Exit status 0 when every command did, 1 otherwise (also
+# when the pages have no such command, or without ../shared, whose scenes the commands name).
 set -u
 cd "$(dirname "$0")/.." || exit 1
 FRAMES=8
@@ -38,8 +38,10 @@ run() {  # run SOURCE COMMAND
         failed=1
         return
     fi
-    local run_cmd=${cmd/ -o frames / -o $out }
-    run_cmd=${run_cmd/.\/raytracer /./raytracer --frames 0:$((FRAMES - 1)) }
+    local run_cmd=${cmd/ -o frames / -o $out } extra="--frames 0:$((FRAMES - 1))"
+    # Assignment 3's frames take many samples per pixel (tap_water: 64 at 1000x1000): one here.
+    [[ $cmd == *scenes/hw3/* ]] && extra+=" --samples 1"
+    run_cmd=${run_cmd/.\/raytracer /./raytracer $extra }
     [[ $run_cmd == parallel\ * ]] && run_cmd="parallel --will-cite ${run_cmd#parallel }"
     bash -c "$run_cmd" >"$tmp/log_$n" 2>&1
     local rc=$? written
