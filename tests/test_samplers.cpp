@@ -83,6 +83,17 @@ TEST(SamplePatterns, SobolSecondDimensionIsItsDirectionNumbersXored) {
     }
 }
 
+TEST(SamplePatterns, ScrambledSobolIsTheCompositionOfItsParts) {
+    for (uint32_t t = 0; t < 20000; ++t) {
+        const uint32_t i = t % 977, shuffle = t * 2654435761u, sa = t * 0x85ebca6bu + 7, sb = ~t * 0xc2b2ae35u;
+        uint32_t x, y, a, b;
+        rt::sobol2(rt::nested_scramble(i, shuffle), x, y);
+        rt::scrambled_sobol2(i, shuffle, sa, sb, a, b);
+        ASSERT_EQ(a, rt::nested_scramble(x, sa)) << t;
+        ASSERT_EQ(b, rt::nested_scramble(y, sb)) << t;
+    }
+}
+
 TEST(SamplePatterns, SobolPrefixesAreNetsInEveryPairAndPixel) {
     // 16 points: one in each of the 16 cells of every elementary shape (1x16, 2x8, 4x4,
     // 8x2, 16x1): a (0, 4, 2)-net, which scrambling and shuffling keep.

@@ -89,9 +89,9 @@ struct SampleStream {
         const uint32_t h0 = uint32_t(h), h1 = uint32_t(h >> 32);
         if (kind == SamplerKind::Sobol) {
             uint32_t x, y;
-            sobol2(nested_scramble(index, h0), x, y);
-            a = unit32(nested_scramble(x, h1));
-            b = unit32(nested_scramble(y, h1 ^ h0 ^ 0x5bd1e995u));
+            scrambled_sobol2(index, h0, h1, h1 ^ h0 ^ 0x5bd1e995u, x, y);
+            a = unit32(x);
+            b = unit32(y);
             return;
         }
         stratified(h, a, b);

@@ -15,32 +15,36 @@ inline uint32_t reverse_bits(uint32_t v) {
     return (v >> 16) | (v << 16);
 }
 
-// A nested uniform (Owen) scramble of a 32-bit fraction, keyed by `seed`: each bit is
-// flipped or not depending only on the seed and the bits above it, so points that share
-// their top k bits still do after it and an elementary interval's points stay in one
-// elementary interval. Done on the reversed bits, where "above" becomes "below": adding,
-// multiplying by an odd number and xoring with a multiple by an even number all change
-// a bit only through the bits below it.
-inline uint32_t nested_scramble(uint32_t v, uint32_t seed) {
-    v = reverse_bits(v);
+// A nested uniform (Owen) scramble keyed by `seed`, on a 32-bit fraction whose bits are
+// reversed (bit 0 its most significant): each bit is flipped or not depending only on the
+// seed and the bits below it here (above it in the fraction), so points that share their
+// top k bits still do after it and an elementary interval's points stay in one elementary
+// interval. Adding, multiplying by an odd number and xoring with a multiple by an even
+// number all change a bit only through the bits below it.
+inline uint32_t owen_reversed(uint32_t v, uint32_t seed) {
     v += seed;
     v ^= v * 0x6a09e666u;
     v *= (seed >> 7) | 1u;
     v ^= v * 0xbb67ae84u;
     v += seed ^ 0x3c6ef372u;
     v ^= v * 0xa54ff53au;
-    return reverse_bits(v);
+    return v;
+}
+
+// The same on a fraction in its usual bit order.
+inline uint32_t nested_scramble(uint32_t v, uint32_t seed) {
+    return reverse_bits(owen_reversed(reverse_bits(v), seed));
 }
 
 // The second dimension of Sobol's sequence (direction numbers: Pascal's triangle mod 2,
 // v_0 = 2^31, v_j+1 = v_j ^ v_j >> 1) as the XOR of the direction numbers of i's set bits,
-// by byte: kSobol1[b][x] is the XOR over the set bits of x at byte b.
-struct Sobol1Table {
+// by byte, bit-reversed: t[b][x] is the XOR over the set bits of x at byte b.
+struct Sobol1ReversedTable {
     uint32_t t[4][256];
-    constexpr Sobol1Table() : t{} {
+    constexpr Sobol1ReversedTable() : t{} {
         uint32_t v[32] = {};
-        v[0] = 0x80000000u;
-        for (int j = 1; j < 32; ++j) v[j] = v[j - 1] ^ (v[j - 1] >> 1);
+        v[0] = 1u;  // 2^31 reversed
+        for (int j = 1; j < 32; ++j) v[j] = v[j - 1] ^ (v[j - 1] << 1);
         for (int b = 0; b < 4; ++b)
             for (int x = 0; x < 256; ++x) {
                 uint32_t r = 0;
@@ -50,14 +54,31 @@ struct Sobol1Table {
             }
     }
 };
-inline constexpr Sobol1Table kSobol1{};
+inline constexpr Sobol1ReversedTable kSobol1Reversed{};
+
+inline uint32_t sobol1_reversed(uint32_t i) {
+    const auto& t = kSobol1Reversed.t;
+    return t[0][i & 0xff] ^ t[1][i >> 8 & 0xff] ^ t[2][i >> 16 & 0xff] ^ t[3][i >> 24];
+}
 
 // Point `i` of the first two dimensions of Sobol's sequence, as 32-bit fractions: the
 // van der Corput radical inverse, and the dimension above. Its first 2^k points are a
 // (0, k, 2)-net: one point in every elementary interval of area 2^-k.
 inline void sobol2(uint32_t i, uint32_t& a, uint32_t& b) {
     a = reverse_bits(i);
-    b = kSobol1.t[0][i & 0xff] ^ kSobol1.t[1][i >> 8 & 0xff] ^ kSobol1.t[2][i >> 16 & 0xff] ^ kSobol1.t[3][i >> 24];
+    b = reverse_bits(sobol1_reversed(i));
+}
+
+// Point `i` of a pixel's shuffled, scrambled pair: Sobol's point of the index shuffled by
+// `shuffle` (a nested scramble of the index, which keeps a block of 2^k indices one
+// aligned block), its coordinates scrambled by `sa` and `sb`. The same as
+// sobol2(nested_scramble(i, shuffle)) with nested_scramble(., sa) and (., sb) applied to
+// its two coordinates, with the bit reversals that cancel left out.
+inline void scrambled_sobol2(uint32_t i, uint32_t shuffle, uint32_t sa, uint32_t sb, uint32_t& a, uint32_t& b) {
+    const uint32_t reversed = owen_reversed(reverse_bits(i), shuffle);  // the shuffled index, reversed
+    const uint32_t shuffled = reverse_bits(reversed);
+    a = reverse_bits(owen_reversed(shuffled, sa));
+    b = reverse_bits(owen_reversed(sobol1_reversed(shuffled), sb));
 }
 
 // A bijection of [0, n) keyed by `seed` (n <= 2^31): a bijection of the next power of two
