@@ -168,7 +168,7 @@ TEST(Cli, UsageErrorsAreOneLinePlusTheUsage) {
         {{"--stats", "scene.json", "other.json"}, "--stats scene.json: that is a scene file; it is not overwritten"},
         {{"--trace", "1,1", "--trace-json", "scene.json", "scene.json"},
          "--trace-json scene.json: that is a scene file; it is not overwritten"},
-        {{"--sampler", "halton", "scene.json"}, "--sampler takes random, stratified or sobol, got 'halton'"},
+        {{"--sampler", "halton", "scene.json"}, "--sampler takes sobol, stratified or random, got 'halton'"},
         {{"--noise-target", "0", "scene.json"}, "--noise-target needs a positive number of levels up to 255, got '0'"},
         {{"--max-samples", "64", "scene.json"}, "--max-samples caps adaptive sampling: it needs --noise-target"},
         {{"--sample-map", "scene.json", "other.json"},

@@ -580,7 +580,7 @@ TEST(Trace, ASampleShowsItsLensTimeLightPointAndRoughDirection) {
     for (const char* k : {"0", "8"}) {
         const Traced t = trace_run(tmp / "d.json", "4,6", tmp / "t.json", {"--sample", k});
         ASSERT_EQ(t.run.exit_code, 0) << dump(t.run);
-        EXPECT_TRUE(contains(t.run.out, std::string("sample ") + k + " of 9 (--sample, seed 0, sampler random)"))
+        EXPECT_TRUE(contains(t.run.out, std::string("sample ") + k + " of 9 (--sample, seed 0, sampler sobol)"))
             << t.run.out;
         EXPECT_TRUE(contains(t.run.out, "lens point (")) << t.run.out;
         EXPECT_TRUE(contains(t.run.out, ", time ")) << t.run.out;

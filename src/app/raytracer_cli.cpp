@@ -152,10 +152,10 @@ int raytracer_cli(int argc, char** argv) {
                    });
     cli::add_choice(
         app, "--sampler",
-        "random (default: as the course's references), stratified (jittered, every pair of "
-        "dimensions) or sobol (scrambled Sobol points): docs/sampling.md",
+        "sobol (default: scrambled Sobol points), stratified (jittered, every pair of dimensions) or "
+        "random (independent numbers, as the course's references were made): docs/sampling.md",
         o.render.sampling.sampler,
-        {{"random", SamplerKind::Random}, {"stratified", SamplerKind::Stratified}, {"sobol", SamplerKind::Sobol}});
+        {{"sobol", SamplerKind::Sobol}, {"stratified", SamplerKind::Stratified}, {"random", SamplerKind::Random}});
     cli::add_number(app, "--noise-target", "E",
                     "adaptive sampling: each pixel takes samples until the estimated standard error of its mean "
                     "is at most E output levels (0..255 after clamping) in every channel, or --max-samples",

@@ -92,10 +92,13 @@ PixelValue sample_pixel(const Scene& scene, const Camera& cam, const PixelSampli
                         const TraceOptions& options, TraceCache* cache) {
     PixelSum acc;
     if (sampling.noise_target > 0) {
-        // Adaptive: a packet of samples at a time until the estimate meets the target.
-        while (acc.n < sampling.max_samples && !(acc.standard_error() <= sampling.noise_target))
-            add_samples(scene, cam, sampling, x, y, acc.n, std::min(sampling.max_samples, acc.n + kPacket), options,
+        // Adaptive: a first few samples, then a packet at a time until the estimate meets
+        // the target.
+        while (acc.n < sampling.max_samples && !(acc.standard_error() <= sampling.noise_target)) {
+            const int batch = acc.n == 0 ? kAdaptiveFirst : kPacket;
+            add_samples(scene, cam, sampling, x, y, acc.n, std::min(sampling.max_samples, acc.n + batch), options,
                         cache, acc);
+        }
     } else {
         add_samples(scene, cam, sampling, x, y, 0, std::max(1, sampling.samples), options, cache, acc);
     }

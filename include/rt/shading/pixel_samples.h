@@ -32,22 +32,23 @@ inline const char* sampler_name(SamplerKind kind) {
 // How a run samples its pixels (--seed, --sampler, --noise-target, --max-samples).
 struct SamplingOptions {
     uint64_t seed = kDefaultSeed;
-    SamplerKind sampler = SamplerKind::Random;
-    // > 0: adaptive sampling: a pixel takes kPacket samples at a time until the estimated
-    // standard error of its mean, in output levels after clamping, is at most this in
-    // every channel, or until max_samples.
+    SamplerKind sampler = SamplerKind::Sobol;
+    // > 0: adaptive sampling: a pixel takes kAdaptiveFirst samples, then kPacket at a time,
+    // until the estimated standard error of its mean, in output levels after clamping, is
+    // at most this in every channel, or until max_samples.
     double noise_target = 0;
     int max_samples = 0;  // adaptive: the cap (0: kAdaptiveCapFactor x the camera's samples)
 };
 inline constexpr int kAdaptiveCapFactor = 4;
+inline constexpr int kAdaptiveFirst = 8;  // enough for a first estimate of the variance
 
 // How a camera's pixels are sampled.
 struct PixelSampling {
     int samples = 0;  // per pixel; 0: one ray through the centre (no NumSamples)
     uint64_t seed = kDefaultSeed;
-    SamplerKind sampler = SamplerKind::Random;
+    SamplerKind sampler = SamplerKind::Sobol;
     bool timed = false;  // some shape moves: each sample draws a time
-    int grid = 0;        // Random: n when samples is a square n^2 > 1 (stratified), else 0
+    int grid = 0;        // n when samples is a square n^2 > 1 and not adaptive (pixel cells), else 0
     // Whether any path draws a random number: samples, a lens, motion, an area light or a
     // rough material. Without, a pixel is its centre ray and its streams are never read.
     bool random = false;
