@@ -13,6 +13,7 @@
 
 #include "rt/core/count_text.h"
 #include "rt/core/error.h"
+#include "rt/geometry/traverse.h"
 #include "rt/loader/camera_desc.h"
 #include "rt/loader/load_scene.h"
 #include "rt/render/render.h"
@@ -192,20 +193,55 @@ std::string refine_part(int camera, int part, int parts, int k0, int k1, uint8_t
             return "samples " + std::to_string(k0) + ".." + std::to_string(k1) + ": part " + std::to_string(part) +
                    " holds " + count_of(size_t(held.samples), "sample");
         const PixelSampling sampling = pixel_sampling(*s.scene, static_cast<size_t>(camera), s.render.sampling);
-        size_t i = 0;
-        for_each_pixel(cam.width, cam.height, part, parts, [&](int x, int y) {
-            if (i == held.sum.size()) held.sum.emplace_back();
-            PixelSum acc;
-            acc.sum = held.sum[i];
-            acc.n = k0;
-            add_samples(*s.scene, cam, sampling, x, y, k0, k1, s.render.trace, &s.cache, acc);
-            held.sum[i++] = acc.sum;
-            // The mean as the render takes it (sample_pixel), quantized as it does.
-            const Vec3 mean = acc.sum / Real(acc.n);
+        // A pixel's mean over samples [0, k1) as the render takes it (sample_pixel), quantized
+        // as it does.
+        const auto put_mean = [&](int x, int y, const Vec3& sum) {
+            const Vec3 mean = sum / Real(k1);
             const uint8_t rgb[3] = {quantize(mean.x, s.render.rounding), quantize(mean.y, s.render.rounding),
                                     quantize(mean.z, s.render.rounding)};
             put_pixel(rgba, cam.width, x, y, rgb);
-        });
+        };
+        if (k1 == 1) {
+            // The first sample of each pixel: kPacket neighbouring pixels' rays traced as one
+            // packet, as the render traces pixels without samples (a ray's radiance is the
+            // same in any packet), not a packet of one ray per pixel.
+            held.sum.clear();
+            int xs[kPacket], ys[kPacket], n = 0;
+            const auto trace_packet = [&] {
+                Ray rays[kPacket];
+                SampleStream streams[kPacket];
+                Vec3 radiance[kPacket];
+                for (int j = 0; j < n; ++j) {
+                    const CameraSample c = camera_sample(cam, sampling, xs[j], ys[j], 0);
+                    rays[j] = c.ray;
+                    streams[j] = c.stream;
+                }
+                trace_primaries(*s.scene, rays, n, s.render.trace, &s.cache, streams, radiance);
+                for (int j = 0; j < n; ++j) {
+                    held.sum.emplace_back();
+                    held.sum.back() += radiance[j];  // as add_samples adds to a sum from zero
+                    put_mean(xs[j], ys[j], held.sum.back());
+                }
+                n = 0;
+            };
+            for_each_pixel(cam.width, cam.height, part, parts, [&](int x, int y) {
+                xs[n] = x;
+                ys[n] = y;
+                if (++n == kPacket) trace_packet();
+            });
+            if (n) trace_packet();
+        } else {
+            size_t i = 0;
+            for_each_pixel(cam.width, cam.height, part, parts, [&](int x, int y) {
+                if (i == held.sum.size()) held.sum.emplace_back();  // k0 0: from zero
+                PixelSum acc;
+                acc.sum = held.sum[i];
+                acc.n = k0;
+                add_samples(*s.scene, cam, sampling, x, y, k0, k1, s.render.trace, &s.cache, acc);
+                held.sum[i++] = acc.sum;
+                put_mean(x, y, acc.sum);
+            });
+        }
         held.samples = k1;
         return "";
     } catch (const std::exception& e) {
