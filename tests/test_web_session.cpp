@@ -195,8 +195,8 @@ std::string sampled_scene() {
     nlohmann::json& cam = j["Scene"]["Cameras"]["Camera"][0];
     cam["ApertureSize"] = "0.1";
     cam["FocusDistance"] = "5";
-    j["Scene"]["Lights"]["AreaLight"] = {{"_id", "1"}, {"Position", "0 3 2"},        {"Normal", "0 -1 0"},
-                                         {"Size", "1"},  {"Radiance", "9000 9000 9000"}};
+    j["Scene"]["Lights"]["AreaLight"] = {
+        {"_id", "1"}, {"Position", "0 3 2"}, {"Normal", "0 -1 0"}, {"Size", "1"}, {"Radiance", "9000 9000 9000"}};
     j["Scene"]["Materials"]["Material"][1]["Roughness"] = "0.2";
     return j.dump();
 }
@@ -218,6 +218,21 @@ std::vector<std::vector<uint8_t>> refined_images(int camera, int parts, const st
     return images;
 }
 
+// Render options of `samples` per pixel under `seed` and `sampler`, and the page's load
+// options that say the same.
+rt::RenderOptions sampled(int samples, uint64_t seed, rt::SamplerKind sampler) {
+    rt::RenderOptions o;
+    o.samples = samples;
+    o.sampling.seed = seed;
+    o.sampling.sampler = sampler;
+    return o;
+}
+std::string load_options(const rt::RenderOptions& o) {
+    return nlohmann::json{
+        {"samples", o.samples}, {"seed", o.sampling.seed}, {"sampler", rt::sampler_name(o.sampling.sampler)}}
+        .dump();
+}
+
 rt::Scene built(const std::string& path, const rt::RenderOptions& o) {
     rt::Scene scene = rt::build_scene(rt::load_scene(path));
     rt::apply_overrides(scene, o);
@@ -232,16 +247,10 @@ rt::Scene built(const std::string& path, const rt::RenderOptions& o) {
 TEST(WebSession, RefinedPassesAddUpToTheRender) {
     TempDir tmp;
     write_text(tmp / "s.json", sampled_scene());
-    for (const char* sampler : {"random", "stratified", "sobol"}) {
-        ASSERT_EQ(rt::web::load(tmp / "s.json", std::string(R"({"samples": 40, "seed": 7, "sampler": ")") + sampler +
-                                                    "\"}"),
-                  "");
-        rt::RenderOptions o;
-        o.samples = 40;
-        o.sampling.seed = 7;
-        o.sampling.sampler = sampler[0] == 'r' ? rt::SamplerKind::Random
-                             : sampler[1] == 't' ? rt::SamplerKind::Stratified
-                                                 : rt::SamplerKind::Sobol;
+    for (const rt::SamplerKind kind : {rt::SamplerKind::Random, rt::SamplerKind::Stratified, rt::SamplerKind::Sobol}) {
+        const rt::RenderOptions o = sampled(40, 7, kind);
+        const char* sampler = rt::sampler_name(kind);
+        ASSERT_EQ(rt::web::load(tmp / "s.json", load_options(o)), "");
         const rt::Scene scene = built(tmp / "s.json", o);
         const std::vector<uint8_t> whole = rgba_of(rt::render(scene, 0, o));
         std::vector<uint8_t> part_whole(whole.size(), 0);
@@ -250,9 +259,11 @@ TEST(WebSession, RefinedPassesAddUpToTheRender) {
         for (const std::vector<int>& bounds : {std::vector<int>{0, 1, 16, 32, 40}, {0, 1, 2, 19, 40}, {0, 40}})
             for (int parts : {1, 3}) {
                 const auto images = refined_images(0, parts, bounds, whole.size());
-                EXPECT_EQ(images.back(), whole) << sampler << ", " << parts << " parts, passes ending at "
-                                                << nlohmann::json(bounds).dump();
-                if (images.size() > 1) EXPECT_NE(images.front(), whole) << "a pass of one sample is the final image";
+                EXPECT_EQ(images.back(), whole)
+                    << sampler << ", " << parts << " parts, passes ending at " << nlohmann::json(bounds).dump();
+                if (images.size() > 1) {
+                    EXPECT_NE(images.front(), whole) << "a pass of one sample is the final image";
+                }
             }
     }
 }
@@ -264,14 +275,10 @@ TEST(WebSession, RefinedPassesAddUpToTheRender) {
 TEST(WebSession, APassIsTheRenderAtItsSamplesWhereTheSamplerSaysSo) {
     TempDir tmp;
     write_text(tmp / "s.json", sampled_scene());
-    for (const char* sampler : {"random", "sobol"}) {
-        ASSERT_EQ(rt::web::load(tmp / "s.json", std::string(R"({"samples": 40, "seed": 3, "sampler": ")") + sampler +
-                                                    "\"}"),
-                  "");
-        rt::RenderOptions o;
-        o.samples = 32;
-        o.sampling.seed = 3;
-        o.sampling.sampler = sampler[0] == 'r' ? rt::SamplerKind::Random : rt::SamplerKind::Sobol;
+    for (const rt::SamplerKind kind : {rt::SamplerKind::Random, rt::SamplerKind::Sobol}) {
+        const char* sampler = rt::sampler_name(kind);
+        ASSERT_EQ(rt::web::load(tmp / "s.json", load_options(sampled(40, 3, kind))), "");
+        const rt::RenderOptions o = sampled(32, 3, kind);
         const std::vector<uint8_t> at32 = rgba_of(rt::render(built(tmp / "s.json", o), 0, o));
         const auto images = refined_images(0, 2, {0, 1, 16, 32, 40}, at32.size());
         EXPECT_EQ(images[2], at32) << sampler;
