@@ -55,6 +55,19 @@ function removeTree(M, dir) {
 
 let current = null;  // the folder of the loaded scene's files
 
+// Runs f(buf, bytes) with a zeroed RGBA image of camera `camera` in the module's memory.
+function withImage(M, camera, f) {
+  const cam = JSON.parse(M.UTF8ToString(M._rtw_scene())).cameras[camera];
+  const bytes = cam.width * cam.height * 4;
+  const buf = M._malloc(bytes);
+  try {
+    M.HEAPU8.fill(0, buf, buf + bytes);
+    return f(buf, bytes);
+  } finally {
+    M._free(buf);
+  }
+}
+
 const handlers = {
   load(M, m) {
     if (current) {
@@ -68,29 +81,17 @@ const handlers = {
     return { error, info };
   },
   render(M, m, post) {
-    const info = JSON.parse(M.UTF8ToString(M._rtw_scene()));
-    const cam = info.cameras[m.camera];
-    const bytes = cam.width * cam.height * 4;
-    const buf = M._malloc(bytes);
-    try {
-      M.HEAPU8.fill(0, buf, buf + bytes);
+    return withImage(M, m.camera, (buf, bytes) => {
       for (const part of m.parts) {
         const error = M.UTF8ToString(M._rtw_render_part(m.camera, part, m.total, buf));
         if (error) return { error };
         post({ type: "progress" });
       }
       return { rgba: M.HEAPU8.slice(buf, buf + bytes) };
-    } finally {
-      M._free(buf);
-    }
+    });
   },
   refine(M, m, post) {
-    const info = JSON.parse(M.UTF8ToString(M._rtw_scene()));
-    const cam = info.cameras[m.camera];
-    const bytes = cam.width * cam.height * 4;
-    const buf = M._malloc(bytes);
-    try {
-      M.HEAPU8.fill(0, buf, buf + bytes);
+    return withImage(M, m.camera, (buf, bytes) => {
       for (let i = 0; i + 1 < m.bounds.length; ++i) {
         const k0 = m.bounds[i], k1 = m.bounds[i + 1];
         for (const part of m.parts) {
@@ -102,9 +103,7 @@ const handlers = {
         post({ type: "pass", pass: i, rgba }, [rgba.buffer]);
       }
       return {};
-    } finally {
-      M._free(buf);
-    }
+    });
   },
   trace(M, m) {
     return { trace: JSON.parse(M.UTF8ToString(M._rtw_trace(m.camera, m.x, m.y, m.sample || 0))) };
