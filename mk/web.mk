@@ -23,7 +23,7 @@ WEB_SRC := $(filter-out src/app/% src/cli/% src/convert/% src/tools/% src/image/
 WEB_ONCE := src/image/stb_impl.cpp src/image/stb_image_impl.cpp
 WEB_DOUBLE_OBJ := $(WEB_SRC:%.cpp=$(WEB_OBJ)/double/%.o) $(WEB_OBJ)/once/src/web/web_main.o
 WEB_FLOAT_OBJ  := $(patsubst %.cpp,$(WEB_OBJ)/float/%.o,$(filter-out $(WEB_ONCE),$(WEB_SRC)))
-WEB_EXPORTS := _rtw_load,_rtw_scene,_rtw_render_part,_rtw_trace,_rtw_compare,_malloc,_free
+WEB_EXPORTS := _rtw_load,_rtw_scene,_rtw_render_part,_rtw_refine_part,_rtw_trace,_rtw_compare,_malloc,_free
 WEB_LDFLAGS := $(WEB_ARCH) -O3 -fexceptions -sMODULARIZE=1 -sEXPORT_NAME=createRaytracerModule -sALLOW_MEMORY_GROWTH=1 \
                -sMAXIMUM_MEMORY=4GB -sENVIRONMENT=web,worker,node -sEXPORTED_FUNCTIONS=$(WEB_EXPORTS) \
                -sEXPORTED_RUNTIME_METHODS=FS,UTF8ToString,stringToUTF8,lengthBytesUTF8

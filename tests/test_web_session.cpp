@@ -186,3 +186,137 @@ TEST(WebSession, ApiErrorsHaveOnePrefix) {
     const RunResult r = run_program("/usr/bin/env", {"node", repo_file("tests/web/node_api.js")});
     EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
 }
+
+namespace {
+
+// kScene with what draws random numbers: a lens, an area light, a rough mirror.
+std::string sampled_scene() {
+    nlohmann::json j = nlohmann::json::parse(kScene);
+    nlohmann::json& cam = j["Scene"]["Cameras"]["Camera"][0];
+    cam["ApertureSize"] = "0.1";
+    cam["FocusDistance"] = "5";
+    j["Scene"]["Lights"]["AreaLight"] = {
+        {"_id", "1"}, {"Position", "0 3 2"}, {"Normal", "0 -1 0"}, {"Size", "1"}, {"Radiance", "9000 9000 9000"}};
+    j["Scene"]["Materials"]["Material"][1]["Roughness"] = "0.2";
+    return j.dump();
+}
+
+// The image after each pass of a progressive render of camera `camera` in `parts` parts,
+// the passes adding samples [bounds[i], bounds[i + 1]) to every part in turn.
+std::vector<std::vector<uint8_t>> refined_images(int camera, int parts, const std::vector<int>& bounds, size_t bytes) {
+    std::vector<std::vector<uint8_t>> images;
+    std::vector<uint8_t> merged(bytes, 0);
+    for (size_t pass = 0; pass + 1 < bounds.size(); ++pass) {
+        for (int part = 0; part < parts; ++part) {
+            std::vector<uint8_t> mine(bytes, 0);
+            EXPECT_EQ(rt::web::refine_part(camera, part, parts, bounds[pass], bounds[pass + 1], mine.data()), "");
+            for (size_t i = 0; i < bytes; i += 4)
+                if (mine[i + 3]) std::copy(&mine[i], &mine[i] + 4, &merged[i]);
+        }
+        images.push_back(merged);
+    }
+    return images;
+}
+
+// Render options of `samples` per pixel under `seed` and `sampler`, and the page's load
+// options that say the same.
+rt::RenderOptions sampled(int samples, uint64_t seed, rt::SamplerKind sampler) {
+    rt::RenderOptions o;
+    o.samples = samples;
+    o.sampling.seed = seed;
+    o.sampling.sampler = sampler;
+    return o;
+}
+std::string load_options(const rt::RenderOptions& o) {
+    return nlohmann::json{
+        {"samples", o.samples}, {"seed", o.sampling.seed}, {"sampler", rt::sampler_name(o.sampling.sampler)}}
+        .dump();
+}
+
+rt::Scene built(const std::string& path, const rt::RenderOptions& o) {
+    rt::Scene scene = rt::build_scene(rt::load_scene(path));
+    rt::apply_overrides(scene, o);
+    return scene;
+}
+
+}  // namespace
+
+// Passes of samples add up to the render of all of them, byte for byte, whatever the
+// sampler, the parts and where the passes split a pixel's samples (a packet of samples
+// traces each ray as it would alone).
+TEST(WebSession, RefinedPassesAddUpToTheRender) {
+    TempDir tmp;
+    write_text(tmp / "s.json", sampled_scene());
+    for (const rt::SamplerKind kind : {rt::SamplerKind::Random, rt::SamplerKind::Stratified, rt::SamplerKind::Sobol}) {
+        const rt::RenderOptions o = sampled(40, 7, kind);
+        const char* sampler = rt::sampler_name(kind);
+        ASSERT_EQ(rt::web::load(tmp / "s.json", load_options(o)), "");
+        const rt::Scene scene = built(tmp / "s.json", o);
+        const std::vector<uint8_t> whole = rgba_of(rt::render(scene, 0, o));
+        std::vector<uint8_t> part_whole(whole.size(), 0);
+        ASSERT_EQ(rt::web::render_part(0, 0, 1, part_whole.data()), "");
+        EXPECT_EQ(part_whole, whole) << "the sampler option does not reach the session: " << sampler;
+        for (const std::vector<int>& bounds : {std::vector<int>{0, 1, 16, 32, 40}, {0, 1, 2, 19, 40}, {0, 40}})
+            for (int parts : {1, 3}) {
+                const auto images = refined_images(0, parts, bounds, whole.size());
+                EXPECT_EQ(images.back(), whole)
+                    << sampler << ", " << parts << " parts, passes ending at " << nlohmann::json(bounds).dump();
+                if (images.size() > 1) {
+                    EXPECT_NE(images.front(), whole) << "a pass of one sample is the final image";
+                }
+            }
+    }
+}
+
+// Under the random and sobol samplers sample k of a pixel is the same whatever the count N
+// when neither k nor N is a square (the random sampler's grid, rt/shading/pixel_samples.h)
+// and k > 1 (one sample is the pixel's centre): the image after 32 of 40 samples is then
+// the render at 32. The stratified sampler lays its pattern out for N (no such promise).
+TEST(WebSession, APassIsTheRenderAtItsSamplesWhereTheSamplerSaysSo) {
+    TempDir tmp;
+    write_text(tmp / "s.json", sampled_scene());
+    for (const rt::SamplerKind kind : {rt::SamplerKind::Random, rt::SamplerKind::Sobol}) {
+        const char* sampler = rt::sampler_name(kind);
+        ASSERT_EQ(rt::web::load(tmp / "s.json", load_options(sampled(40, 3, kind))), "");
+        const rt::RenderOptions o = sampled(32, 3, kind);
+        const std::vector<uint8_t> at32 = rgba_of(rt::render(built(tmp / "s.json", o), 0, o));
+        const auto images = refined_images(0, 2, {0, 1, 16, 32, 40}, at32.size());
+        EXPECT_EQ(images[2], at32) << sampler;
+        EXPECT_NE(images[3], at32) << sampler << ": 8 more samples change nothing: the test shows nothing";
+    }
+}
+
+// A camera without samples is one pass of its one ray: render_part's bytes.
+TEST(WebSession, RefiningACameraWithoutSamplesIsItsRender) {
+    TempDir tmp;
+    write_text(tmp / "s.json", kScene);
+    ASSERT_EQ(rt::web::load(tmp / "s.json", ""), "");
+    for (int camera = 0; camera < 2; ++camera) {
+        const rt::Scene scene = built(tmp / "s.json", rt::RenderOptions{});
+        const std::vector<uint8_t> whole = rgba_of(rt::render(scene, camera, rt::RenderOptions{}));
+        EXPECT_EQ(refined_images(camera, 2, {0, 1}, whole.size()).back(), whole) << "camera " << camera;
+    }
+}
+
+TEST(WebSession, RefiningChecksItsSamplesAndParts) {
+    TempDir tmp;
+    write_text(tmp / "s.json", sampled_scene());
+    ASSERT_EQ(rt::web::load(tmp / "s.json", R"({"samples": 20})"), "");
+    std::vector<uint8_t> px(37 * 23 * 4);
+    EXPECT_EQ(rt::web::refine_part(0, 0, 2, 0, 16, px.data()), "");
+    EXPECT_EQ(rt::web::refine_part(0, 0, 2, 8, 20, px.data()), "samples 8..20: part 0 holds 16 samples");
+    EXPECT_EQ(rt::web::refine_part(0, 1, 2, 16, 20, px.data()), "samples 16..20: part 1 holds 0 samples");
+    EXPECT_EQ(rt::web::refine_part(0, 0, 2, 16, 21, px.data()), "samples 16..21: camera 1 takes 20 samples per pixel");
+    EXPECT_EQ(rt::web::refine_part(0, 0, 2, 16, 16, px.data()), "samples 16..16: camera 1 takes 20 samples per pixel");
+    EXPECT_EQ(rt::web::refine_part(0, 2, 2, 0, 1, px.data()), "render: part outside 0..parts-1");
+    EXPECT_EQ(rt::web::refine_part(2, 0, 2, 0, 1, px.data()), "no such camera");
+    // Another camera or part count drops the sums; 0 starts a part afresh.
+    EXPECT_EQ(rt::web::refine_part(1, 0, 2, 0, 1, px.data()), "");
+    EXPECT_EQ(rt::web::refine_part(0, 0, 2, 16, 20, px.data()), "samples 16..20: part 0 holds 0 samples");
+    EXPECT_EQ(rt::web::refine_part(0, 0, 3, 0, 4, px.data()), "");
+    EXPECT_EQ(rt::web::refine_part(0, 0, 3, 0, 4, px.data()), "");
+    EXPECT_EQ(rt::web::refine_part(0, 0, 3, 4, 20, px.data()), "");
+    EXPECT_EQ(rt::web::load(tmp / "s.json", R"({"sampler": "halton"})"),
+              R"(options: sampler: unknown option or bad value "halton")");
+    EXPECT_EQ(rt::web::refine_part(0, 0, 1, 0, 1, px.data()), "no scene loaded");
+}

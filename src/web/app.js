@@ -65,6 +65,7 @@ function options() {
   if (samples !== "") o.samples = Number(samples);
   const seed = $("seed").value.trim();
   if (seed !== "") o.seed = /^\d+$/.test(seed) && Number.isSafeInteger(Number(seed)) ? Number(seed) : seed;
+  if ($("sampler").value !== "random") o.sampler = $("sampler").value;
   const w = parseInt($("workers").value, 10);
   if (w > 0) o.workers = w;
   return o;
@@ -87,6 +88,11 @@ function pixelOf(ev, canvas, width, height) {
   };
 }
 
+const seconds = (s) => (s < 10 ? s.toFixed(1) : s.toFixed(0)) + " s";
+
+// Renders the scene, showing each image as its passes come: a first image after one
+// sample per pixel, then refined (raytracer.js, onPass), with the samples done and the
+// time left in the status line and under the image.
 async function render() {
   if (!state.files) return;
   setError("");
@@ -96,15 +102,35 @@ async function render() {
   const progress = $("progress");
   progress.value = 0;
   const opts = options();
+  state.options = opts;
+  state.rendering = true;
+  state.passes = [];  // [camera, samples per pixel] of each image shown
+  const views = [];
+  let shown = "";  // the latest pass, for the status line
+  const t0 = performance.now();
   setStatus("rendering " + state.scene + " …");
   try {
     const result = await raytracer.render({
       files: state.files, scene: state.scene,
-      options: { ...opts, onProgress: (camera, done, total) => { progress.value = done / total; } },
+      options: {
+        ...opts,
+        onProgress: (camera, done, total) => {
+          progress.value = done / total;
+          const elapsed = (performance.now() - t0) / 1000, f = done / total;
+          setStatus("rendering " + state.scene + ": image " + (camera + 1) + ", " + (100 * f).toFixed(0) + "%" +
+                    shown + ", " + seconds(elapsed) + (f > 0 && f < 1 ? ", about " + seconds(elapsed * (1 - f) / f) + " left" : ""));
+        },
+        onPass: (img) => {
+          state.passes.push([img.camera, img.samplesDone]);
+          shown = img.samples > 1 ? " (" + img.samplesDone + " of " + img.samples + " samples per pixel shown)" : "";
+          if (!views[img.camera]) views[img.camera] = showImage(img, img.camera);
+          else views[img.camera].update(img);
+        },
+      },
     });
     state.result = { ...result, options: opts };
     progress.value = 1;
-    result.images.forEach((img, camera) => showImage(img, camera));
+    result.images.forEach((img, camera) => views[camera].update(img));
     setStatus(result.images.length + " image(s), " + result.seconds.toFixed(3) + " s rendering on " + result.workers +
               " worker(s), load " + result.loadSeconds.toFixed(3) + " s" +
               (result.warnings.length ? "; warnings: " + result.warnings.join("; ") : ""));
@@ -112,22 +138,28 @@ async function render() {
     setError(e.message);
     setStatus("");
   } finally {
+    state.rendering = false;
     $("render").disabled = false;
   }
 }
 
-function showImage(img, camera) {
+// An image's box: its canvas, caption, PNG download, comparison and tracing; update(img)
+// draws a later pass (or the final image) in it.
+function showImage(first, camera) {
+  const view = { img: first };
   const box = document.createElement("div");
   box.className = "image";
   const stack = document.createElement("div");
   stack.className = "stack";
-  const canvas = canvasOf(img.width, img.height, img.rgba);
+  const canvas = canvasOf(first.width, first.height, first.rgba);
   canvas.className = "render";
   stack.appendChild(canvas);
   const caption = document.createElement("div");
+  caption.className = "caption";
+  const text = document.createTextNode("");
   const link = document.createElement("a");
-  link.textContent = "download " + img.name;
-  link.download = img.name.replace(/\.[^.]*$/, "") + ".png";
+  link.textContent = "download " + first.name;
+  link.download = first.name.replace(/\.[^.]*$/, "") + ".png";
   link.href = "#";
   link.onclick = (ev) => {
     ev.preventDefault();
@@ -139,8 +171,19 @@ function showImage(img, camera) {
       setTimeout(() => URL.revokeObjectURL(a.href), 1000);
     }, "image/png");
   };
-  caption.append(img.name + ": " + img.width + "x" + img.height + ", " +
-                 (img.samples ? img.samples + " samples/pixel, " : "") + img.seconds.toFixed(3) + " s  ", link);
+  caption.append(text, link);
+  // A pass (samplesDone of samples, secondsLeft) or the final image (its seconds).
+  view.update = (img) => {
+    view.img = img;
+    const c = img.rgba;
+    canvas.getContext("2d").putImageData(new ImageData(new Uint8ClampedArray(c.buffer, c.byteOffset, c.length), img.width, img.height), 0, 0);
+    const size = img.name + ": " + img.width + "x" + img.height + ", ";
+    text.textContent = img.secondsLeft > 0
+      ? size + img.samplesDone + " of " + img.samples + " samples/pixel (pass " + img.pass + " of " + img.passes.length +
+        "), " + seconds(img.seconds) + ", about " + seconds(img.secondsLeft) + " left  "
+      : size + (img.samples ? img.samples + " samples/pixel, " : "") + img.seconds.toFixed(3) + " s  ";
+  };
+  view.update(first);
   const compare = document.createElement("label");
   compare.className = "button";
   compare.textContent = "compare with your PNG";
@@ -156,13 +199,14 @@ function showImage(img, camera) {
   check.type = "checkbox";
   check.checked = true;
   toggle.append(check, " heatmap over the image");
-  input.onchange = () => input.files[0] && compareWith(input.files[0], img, stack, figures, toggle, check, camera);
+  input.onchange = () => input.files[0] && compareWith(input.files[0], view.img, stack, figures, toggle, check, camera);
   canvas.onclick = (ev) => {
-    const p = pixelOf(ev, canvas, img.width, img.height);
+    const p = pixelOf(ev, canvas, first.width, first.height);
     traceAt(camera, p.x, p.y);
   };
   box.append(stack, caption, compare, " ", toggle, figures);
   $("images").appendChild(box);
+  return view;
 }
 
 async function decodePng(file) {
@@ -259,7 +303,7 @@ async function traceAt(camera, x, y) {
   state.traced = { camera, x, y };
   try {
     const sample = Number($("sample").value || 0);
-    const opts = state.result ? state.result.options : options();
+    const opts = state.options || options();
     const t = await raytracer.trace({ files: state.files, scene: state.scene, options: opts, camera, x, y, sample });
     setError("");
     const s = t.sample;

@@ -1,14 +1,21 @@
 // The renderer's JavaScript API (docs/web.md), used by the page and by tests:
 //   await raytracer.render({files: {name: Uint8Array, ...}, scene: "name.json", options: {...}})
-//     -> {images: [{name, width, height, samples, rgba: Uint8Array}], seconds, warnings}
+//     -> {images: [{name, width, height, samples, passes, rgba: Uint8Array, seconds}], seconds, warnings}
 //   await raytracer.trace({files, scene, options, camera, x, y, sample}) -> the --trace-json object
 //   await raytracer.compare(a, b, width, height, tolerance) -> {figures, heat}
+//   raytracer.passes(samples) -> the samples per pixel after each pass of a progressive image
 // options: cull (true), precision ("double" | "float"), max_depth (-1: the scene's),
 // epsilon_scale (1), min_weight (1e-4), rounding ("truncate" | "nearest"), samples (0:
-// each camera's NumSamples), seed (0; beyond 2^53 a string of digits), workers (how many
-// Web Workers render, default one per core), onProgress(done, total).
+// each camera's NumSamples), seed (0; beyond 2^53 a string of digits), sampler ("random" |
+// "stratified" | "sobol"), workers (how many Web Workers render, default one per core),
+// onProgress(camera, done, total) (done / total: the share of the image's work done),
+// onPass(image) (each image after each of its passes: {camera, name, width, height,
+// samples, samplesDone, pass, passes, rgba, seconds, secondsLeft}).
 // Each worker holds its own WebAssembly module and copy of the scene; an image's 16x16
-// tiles are dealt to them in turn, and every pixel is the same whichever renders it.
+// tiles are dealt to them in turn, and every pixel is the same whichever renders it. An
+// image with samples renders progressively: pass after pass, each worker adds samples to
+// its own tiles' pixels (rtw_refine_part), and the mean image is shown after every pass;
+// the last is the image of all the samples, the native one.
 // Errors reject with an Error whose message is the command line's one line ("error: ...").
 "use strict";
 
@@ -25,8 +32,8 @@
         const m = e.data;
         const p = this.pending.get(m.id);
         if (!p) return;
-        if (m.type === "progress") {
-          if (p.progress) p.progress();
+        if (m.type === "progress" || m.type === "pass") {
+          if (p.on[m.type]) p.on[m.type](m);
           return;
         }
         this.pending.delete(m.id);
@@ -37,11 +44,12 @@
         this.pending.clear();
       };
     }
-    ask(msg, progress, transfer) {
+    // on: {progress(m), pass(m)}, called for the request's messages before its answer.
+    ask(msg, on) {
       const id = ++this.next;
       return new Promise((resolve, reject) => {
-        this.pending.set(id, { resolve, reject, progress });
-        this.w.postMessage({ id, ...msg }, transfer || []);
+        this.pending.set(id, { resolve, reject, on: on || {} });
+        this.w.postMessage({ id, ...msg });
       });
     }
     terminate() {
@@ -53,7 +61,31 @@
   // whether or not the message had it already.
   const failure = (message) => new Error(/^error: /.test(message) ? message : "error: " + message);
 
-  const kRenderKeys = ["cull", "max_depth", "epsilon_scale", "min_weight", "rounding", "samples", "seed"];
+  const kRenderKeys = ["cull", "max_depth", "epsilon_scale", "min_weight", "rounding", "samples", "seed", "sampler"];
+
+  // The samples per pixel after each pass of an image of `samples`: one (a first image at
+  // once), then 16, 32, 64, ... (doubling: each pass halves the variance), then all of
+  // them. Past the first, passes end at multiples of 16, whole packets of samples.
+  function passes(samples) {
+    const out = [1];
+    for (let k = 16; k < samples; k *= 2) out.push(k);
+    if (samples > 1) out.push(samples);
+    return out;
+  }
+
+  // The parts' images (alpha 255 where a part rendered a pixel) merged into the first.
+  function merge(images) {
+    const rgba = images[0];
+    for (const r of images.slice(1))
+      for (let i = 3; i < rgba.length; i += 4)
+        if (r[i]) {
+          rgba[i - 3] = r[i - 3];
+          rgba[i - 2] = r[i - 2];
+          rgba[i - 1] = r[i - 1];
+          rgba[i] = 255;
+        }
+    return rgba;
+  }
 
   class Raytracer {
     constructor() {
@@ -111,35 +143,67 @@
         const images = [];
         let seconds = 0;
         for (let c = 0; c < info.cameras.length; ++c) {
-          const cam = info.cameras[c];
-          const total = n * 8;  // parts: progress moves in steps of 1/total
-          let done = 0;
-          const t1 = performance.now();
-          const replies = await Promise.all(this.workers.map((w, k) => {
-            const parts = [];
-            for (let p = k; p < total; p += n) parts.push(p);
-            return w.ask({ type: "render", camera: c, parts, total }, () => {
-              ++done;
-              if (options.onProgress) options.onProgress(c, done, total);
-            });
-          }));
-          const bad = replies.find((r) => r.error);
-          if (bad) throw failure(bad.error);
-          const rgba = replies[0].rgba;
-          for (const r of replies.slice(1))
-            for (let i = 3; i < rgba.length; i += 4)
-              if (r.rgba[i]) {
-                rgba[i - 3] = r.rgba[i - 3];
-                rgba[i - 2] = r.rgba[i - 2];
-                rgba[i - 1] = r.rgba[i - 1];
-                rgba[i] = 255;
-              }
-          const s = (performance.now() - t1) / 1000;
-          seconds += s;
-          images.push({ name: cam.name, width: cam.width, height: cam.height, samples: cam.samples, rgba, seconds: s });
+          const image = await (info.cameras[c].samples > 1 ? this.refine(c, info.cameras[c], n, options)
+                                                            : this.renderOnce(c, info.cameras[c], n, options));
+          seconds += image.seconds;
+          images.push(image);
         }
         return { images, seconds, loadSeconds, warnings: info.warnings, workers: n };
       });
+    }
+
+    // An image's parts (n * 8 of them) dealt to the n workers in turn, a request to each
+    // (ask(worker, its parts, total)); their answers, checked.
+    async spread(n, ask) {
+      const total = n * 8;  // parts: progress moves in steps of 1/total
+      const replies = await Promise.all(this.workers.map((w, k) => {
+        const parts = [];
+        for (let p = k; p < total; p += n) parts.push(p);
+        return ask(w, parts, total);
+      }));
+      const bad = replies.find((r) => r.error);
+      if (bad) throw failure(bad.error);
+      return replies;
+    }
+
+    // An image in one pass (a camera without samples: one ray a pixel).
+    async renderOnce(c, cam, n, options) {
+      let done = 0;
+      const t1 = performance.now();
+      const replies = await this.spread(n, (w, parts, total) => w.ask({ type: "render", camera: c, parts, total }, {
+        progress: () => { if (options.onProgress) options.onProgress(c, ++done, total); },
+      }));
+      const rgba = merge(replies.map((r) => r.rgba));
+      const seconds = (performance.now() - t1) / 1000;
+      const image = { name: cam.name, width: cam.width, height: cam.height, samples: cam.samples, passes: [1], rgba, seconds };
+      if (options.onPass) options.onPass({ camera: c, ...image, samplesDone: 1, pass: 1, secondsLeft: 0 });
+      return image;
+    }
+
+    // An image with samples, pass after pass: each worker adds each pass's samples to its
+    // parts' pixels; a pass is shown once every worker has sent its parts of it.
+    async refine(c, cam, n, options) {
+      const after = passes(cam.samples), bounds = [0, ...after];
+      const got = after.map(() => []);
+      let done = 0, last = null;
+      const t1 = performance.now();
+      const elapsed = () => (performance.now() - t1) / 1000;
+      const image = { name: cam.name, width: cam.width, height: cam.height, samples: cam.samples, passes: after };
+      await this.spread(n, (w, parts, total) => w.ask({ type: "refine", camera: c, parts, total, bounds }, {
+        progress: (m) => { done += m.samples; if (options.onProgress) options.onProgress(c, done, total * cam.samples); },
+        pass: (m) => {
+          // A worker's passes come in order, so pass i completes after pass i - 1.
+          got[m.pass].push(m.rgba);
+          if (got[m.pass].length < n) return;
+          last = merge(got[m.pass]);
+          got[m.pass] = null;
+          const k = after[m.pass], s = elapsed();
+          if (options.onPass)
+            options.onPass({ camera: c, ...image, rgba: last, seconds: s, samplesDone: k, pass: m.pass + 1,
+                             secondsLeft: s * (cam.samples - k) / k });
+        },
+      }));
+      return { ...image, rgba: last, seconds: elapsed() };
     }
 
     trace(req) {
@@ -168,4 +232,5 @@
   }
 
   global.raytracer = new Raytracer();
+  global.raytracer.passes = passes;
 })(typeof window !== "undefined" ? window : self);

@@ -18,6 +18,7 @@ namespace rt_float::web {
 std::string load(const std::string& scene_path, const std::string& options_json);
 std::string scene_json();
 std::string render_part(int camera, int part, int parts, uint8_t* rgba);
+std::string refine_part(int camera, int part, int parts, int k0, int k1, uint8_t* rgba);
 std::string trace(int camera, int x, int y, int sample);
 }  // namespace rt_float::web
 
@@ -57,6 +58,11 @@ EMSCRIPTEN_KEEPALIVE const char* rtw_scene() {
 EMSCRIPTEN_KEEPALIVE const char* rtw_render_part(int camera, int part, int parts, uint8_t* rgba) {
     return out(g_float ? rt_float::web::render_part(camera, part, parts, rgba)
                        : rt::web::render_part(camera, part, parts, rgba));
+}
+
+EMSCRIPTEN_KEEPALIVE const char* rtw_refine_part(int camera, int part, int parts, int k0, int k1, uint8_t* rgba) {
+    return out(g_float ? rt_float::web::refine_part(camera, part, parts, k0, k1, rgba)
+                       : rt::web::refine_part(camera, part, parts, k0, k1, rgba));
 }
 
 EMSCRIPTEN_KEEPALIVE const char* rtw_trace(int camera, int x, int y, int sample) {

@@ -5,6 +5,9 @@
 //       -> {error, info: {cameras: [{name, width, height}], warnings}}
 //   {type: "render", camera, parts: [k, ...], total} -> {type: "progress"} per part, then
 //       {rgba}: the image with the parts' tiles rendered (alpha 255), the rest zero
+//   {type: "refine", camera, parts: [k, ...], total, bounds: [0, b1, ..., N]} -> pass i
+//       adds samples [bounds[i], bounds[i + 1]) to each part: {type: "progress", samples}
+//       per part, then {type: "pass", pass: i, rgba}: the parts' pixels' means so far; then {}
 //   {type: "trace", camera, x, y, sample} -> {trace}: the --trace-json object
 //   {type: "compare", a, b, width, height, tolerance} -> {figures, heat}
 /* global createRaytracerModule, importScripts, sceneFiles */
@@ -52,6 +55,19 @@ function removeTree(M, dir) {
 
 let current = null;  // the folder of the loaded scene's files
 
+// Runs f(buf, bytes) with a zeroed RGBA image of camera `camera` in the module's memory.
+function withImage(M, camera, f) {
+  const cam = JSON.parse(M.UTF8ToString(M._rtw_scene())).cameras[camera];
+  const bytes = cam.width * cam.height * 4;
+  const buf = M._malloc(bytes);
+  try {
+    M.HEAPU8.fill(0, buf, buf + bytes);
+    return f(buf, bytes);
+  } finally {
+    M._free(buf);
+  }
+}
+
 const handlers = {
   load(M, m) {
     if (current) {
@@ -65,21 +81,29 @@ const handlers = {
     return { error, info };
   },
   render(M, m, post) {
-    const info = JSON.parse(M.UTF8ToString(M._rtw_scene()));
-    const cam = info.cameras[m.camera];
-    const bytes = cam.width * cam.height * 4;
-    const buf = M._malloc(bytes);
-    try {
-      M.HEAPU8.fill(0, buf, buf + bytes);
+    return withImage(M, m.camera, (buf, bytes) => {
       for (const part of m.parts) {
         const error = M.UTF8ToString(M._rtw_render_part(m.camera, part, m.total, buf));
         if (error) return { error };
         post({ type: "progress" });
       }
       return { rgba: M.HEAPU8.slice(buf, buf + bytes) };
-    } finally {
-      M._free(buf);
-    }
+    });
+  },
+  refine(M, m, post) {
+    return withImage(M, m.camera, (buf, bytes) => {
+      for (let i = 0; i + 1 < m.bounds.length; ++i) {
+        const k0 = m.bounds[i], k1 = m.bounds[i + 1];
+        for (const part of m.parts) {
+          const error = M.UTF8ToString(M._rtw_refine_part(m.camera, part, m.total, k0, k1, buf));
+          if (error) return { error };
+          post({ type: "progress", samples: k1 - k0 });
+        }
+        const rgba = M.HEAPU8.slice(buf, buf + bytes);
+        post({ type: "pass", pass: i, rgba }, [rgba.buffer]);
+      }
+      return {};
+    });
   },
   trace(M, m) {
     return { trace: JSON.parse(M.UTF8ToString(M._rtw_trace(m.camera, m.x, m.y, m.sample || 0))) };
@@ -100,7 +124,7 @@ const handlers = {
 
 self.onmessage = async (e) => {
   const m = e.data;
-  const post = (reply) => self.postMessage({ id: m.id, ...reply });
+  const post = (reply, transfer) => self.postMessage({ id: m.id, ...reply }, transfer || []);
   try {
     const M = await ready;
     const result = handlers[m.type](M, m, post);

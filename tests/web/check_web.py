@@ -4,9 +4,12 @@ Chromium (Debian's chromium, chromium-driver and python3-selenium), against the 
 double build:
   1. Node: every complete scene of ../shared (hw1, hw2; hw3 at a few samples per pixel and
      a seed of its own, on both sides) rendered by the module alone, pixel-identical to
-     ./raytracer's images.
+     ./raytracer's images; a small scene of 40 samples per pixel rendered pass after pass,
+     its passes 1, 16, 32 and 40, the last ./raytracer's image, the one of 32 its --samples 32.
   2. The page from a local server: it loads; the same scenes through raytracer.render(),
-     pixel-identical; a scene given through the file input renders; traces equal
+     pixel-identical, shown pass after pass; the small scene's passes through the API and
+     through the page's button (its captions give the samples done and the time left); a
+     scene given through the file input renders; traces equal
      ./raytracer --trace-json's, hw3's of a sample; a bad scene and a bad seed show the
      command line's one-line error and the page keeps working; the page's samples, seed and
      trace sample fields reach the image and the tree; a screenshot with an image, a ray
@@ -14,21 +17,18 @@ double build:
 Exit status 0 when every check passed, 1 otherwise; without ../shared (RT_SHARED_DIR) or
 the browser it fails loudly, never skips."""
 import base64
-import functools
-import http.server
 import json
 import os
-import shutil
 import subprocess
 import sys
 import tempfile
-import threading
 import time
 
 sys.path.insert(0, os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
 from shared_scenes import REPO, RAYTRACER, RTDIFF, check, complete_scenes, failures, identical, shared_dir  # noqa: E402
-
-WEB = os.environ.get("RT_WEB_DIR") or os.path.join(REPO, "build", "web")  # another build: RT_WEB_DIR
+from web_support import (CANVAS_JS, FETCH_JS, WEB, Clock, browser, canvas_equals, native_images,  # noqa: E402
+                         render_in_page, start_server, wait_for, write_ppm)
+from check_progressive import node_passes, page_passes  # noqa: E402
 
 # Assignment 3's Monte Carlo scenes render at a few samples per pixel (their NumSamples
 # would take minutes), with a seed other than the default: the page's samples and seed
@@ -42,32 +42,6 @@ def settings(hw):
     """./raytracer's flags and the page's options for a scene of assignment `hw`, and how
     the checks' lines say so."""
     return (HW3_FLAGS, HW3_OPTIONS, f" at {HW3_SAMPLES} samples, seed {HW3_SEED}") if hw == "hw3" else ([], {}, "")
-
-
-def write_ppm(path, width, height, rgba):
-    rgb = bytearray(width * height * 3)
-    rgb[0::3], rgb[1::3], rgb[2::3] = rgba[0::4], rgba[1::4], rgba[2::4]
-    with open(path, "wb") as f:
-        f.write(b"P6\n%d %d\n255\n" % (width, height) + bytes(rgb))
-
-
-_native = {}  # (scene, flags) -> its images, rendered once for the Node and the page checks
-
-
-def native_images(scene, out, flags=()):
-    """./raytracer's images of `scene` with `flags` (into `out` the first time): {image name: path}."""
-    key = (scene, tuple(flags))
-    if key not in _native:
-        os.makedirs(out, exist_ok=True)
-        before = set(os.listdir(out))
-        subprocess.run([RAYTRACER, "-q", *flags, "-o", out, scene], check=True)
-        _native[key] = {os.path.splitext(n)[0]: os.path.join(out, n) for n in set(os.listdir(out)) - before}
-    return _native[key]
-
-
-class Clock:
-    """Seconds spent on assignment 3's scenes, for the summary (docs/web.md, "Tests")."""
-    hw3 = 0.0
 
 
 def node_checks(shared, scenes, tmp):
@@ -88,69 +62,7 @@ def node_checks(shared, scenes, tmp):
                 check(same, f"node {hw}/{rel} {name}{what}: equal to native ({seconds} s; {text[0]})")
         if hw == "hw3":
             Clock.hw3 += time.time() - t0
-
-
-class Handler(http.server.SimpleHTTPRequestHandler):
-    """build/web at /, ../shared at /shared/, the test's own files at /fixtures/."""
-    roots = {}
-
-    def translate_path(self, path):
-        path = path.split("?", 1)[0]
-        for prefix, root in self.roots.items():
-            if path.startswith(prefix):
-                return os.path.join(root, path[len(prefix):].lstrip("/"))
-        return super().translate_path(path)
-
-    def log_message(self, *args):
-        pass
-
-
-def start_server(shared, fixtures):
-    Handler.roots = {"/shared/": shared, "/fixtures/": fixtures}
-    server = http.server.ThreadingHTTPServer(("127.0.0.1", 0), functools.partial(Handler, directory=WEB))
-    threading.Thread(target=server.serve_forever, daemon=True).start()
-    return server
-
-
-def browser():
-    from selenium import webdriver
-    from selenium.webdriver.chrome.service import Service
-    o = webdriver.ChromeOptions()
-    o.binary_location = shutil.which("chromium") or "/usr/bin/chromium"
-    for a in ("--headless=new", "--no-sandbox", "--disable-gpu", "--disable-dev-shm-usage", "--window-size=1400,1800"):
-        o.add_argument(a)
-    d = webdriver.Chrome(service=Service(shutil.which("chromedriver") or "/usr/bin/chromedriver"), options=o)
-    d.set_script_timeout(600)
-    return d
-
-
-# fetchScene(url): a scene of ../shared and its PLY files, as the API takes them: {name, files}.
-FETCH_JS = """
-async function fetchScene(url) {
-  const dir = url.slice(0, url.lastIndexOf('/') + 1), name = url.slice(url.lastIndexOf('/') + 1);
-  const text = new Uint8Array(await (await fetch(url)).arrayBuffer());
-  const files = {[name]: text};
-  for (const p of sceneFiles.plyPaths(JSON.parse(new TextDecoder().decode(text))))
-    files[p] = new Uint8Array(await (await fetch(dir + p)).arrayBuffer());
-  return {name, files};
-}
-"""
-
-# Renders a scene of ../shared through the API: returns {images: [{name, width, height,
-# rgba (base64)}], seconds} or {error}.
-RENDER_JS = FETCH_JS + """
-const [url, options, done] = arguments;
-(async () => {
-  const {name, files} = await fetchScene(url);
-  const r = await raytracer.render({files, scene: name, options});
-  const b64 = (u8) => { let s = ''; for (let i = 0; i < u8.length; i += 0x8000) s += String.fromCharCode.apply(null, u8.subarray(i, i + 0x8000)); return btoa(s); };
-  return {seconds: r.seconds, workers: r.workers, images: r.images.map(i => ({name: i.name, width: i.width, height: i.height, seconds: i.seconds, rgba: b64(i.rgba)}))};
-})().then(done, e => done({error: String(e && e.message || e)}));
-"""
-
-
-def render_in_page(d, url, options):
-    return d.execute_async_script(RENDER_JS, url, options)
+    node_passes(shared, tmp)
 
 
 # Traces a pixel of a scene of ../shared through the API: the --trace-json object or {error}.
@@ -188,37 +100,10 @@ def trace_check(d, base, shared, tmp, hw, rel, x, y, sample=0, shows=None):
           + (f"; {got['error']}" if "error" in got else "") + ")")
 
 
-# The first rendered canvas as [width, height, RGBA in base64], or null while there is none.
-CANVAS_JS = """
-const c = document.querySelector('#images canvas.render');
-if (!c) return null;
-const u8 = c.getContext('2d').getImageData(0, 0, c.width, c.height).data;
-let s = ''; for (let i = 0; i < u8.length; i += 0x8000) s += String.fromCharCode.apply(null, u8.subarray(i, i + 0x8000));
-return [c.width, c.height, btoa(s)];
-"""
-
-
-def canvas_equals(canvas, native_png, ppm, what):
-    """Checks a CANVAS_JS result against a native image."""
-    write_ppm(ppm, canvas[0], canvas[1], base64.b64decode(canvas[2]))
-    same, text = identical(ppm, native_png)
-    check(same, f"  and {what} equals native ({text[0]})")
-
-
-def wait_for(d, js, timeout=120):
-    t0 = time.time()
-    while time.time() - t0 < timeout:
-        v = d.execute_script(js)
-        if v:
-            return v
-        time.sleep(0.1)
-    return None
-
-
 def page_checks(shared, scenes, tmp):
     print("== the page in headless Chromium", flush=True)
     fixtures = os.path.join(tmp, "fixtures")
-    os.makedirs(fixtures)
+    os.makedirs(fixtures, exist_ok=True)
     server = start_server(shared, fixtures)
     base = f"http://127.0.0.1:{server.server_address[1]}/"
     d = browser()
@@ -239,8 +124,10 @@ def page_checks(shared, scenes, tmp):
                     ppm = os.path.join(tmp, f"page-{hw}-{name}.ppm")
                     write_ppm(ppm, im["width"], im["height"], base64.b64decode(im["rgba"]))
                     same, text = identical(ppm, native.get(name, "missing"))
-                    check(same, f"page {hw}/{rel} {name}{what}: equal to native ({im['seconds']:.3f} s, "
-                                f"{r['workers']} workers; {text[0]})")
+                    passes = ", ".join(map(str, im["passes"]))
+                    check(same and im["shown"] == im["passes"],
+                          f"page {hw}/{rel} {name}{what}: equal to native ({im['seconds']:.3f} s, "
+                          f"{r['workers']} workers, passes shown {passes}; {text[0]})")
             if hw == "hw3":
                 Clock.hw3 += time.time() - t0
 
@@ -271,6 +158,7 @@ def page_checks(shared, scenes, tmp):
         trace_check(d, base, shared, tmp, "hw3", "cornellbox_brushed_metal.json", 500, 530, 1,
                     lambda t: None if has_field(t, "ideal_direction") else "ideal_direction")
         Clock.hw3 += time.time() - t0
+        page_passes(d, base, shared, tmp)
 
         # A scene given through the file input, rendered by the page's button.
         knot = os.path.join(REPO, "scenes", "knot")
@@ -337,7 +225,8 @@ def page_checks(shared, scenes, tmp):
         for field, value in (("seed", "3"), ("samples", "4"), ("sample", "2")):
             d.execute_script(set_field, field, value)
         d.find_element("id", "render").click()
-        rendered = wait_for(d, "return document.querySelectorAll('#images canvas.render').length > 0 && "
+        rendered = wait_for(d, "return window.app.rendering === false && "
+                               "document.querySelectorAll('#images canvas.render').length > 0 && "
                                "!document.getElementById('error').textContent", 120) is not None
         showcase = os.path.join(REPO, "scenes", "showcase.json")
         if check(rendered, "after the errors, a bundled scene renders (4 samples, seed 3 in the page's fields)"):

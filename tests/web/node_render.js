@@ -1,21 +1,43 @@
 // Renders scene files with the WebAssembly module alone (build/web/rt.js) under Node, one
 // thread, as the page's workers do: node node_render.js OUT_DIR [--precision float]
-// [--options JSON] SCENE.json... (JSON: the page's load options, {"samples": 4, "seed": 7})
-// writes OUT_DIR/<ImageName without extension>.ppm for every camera and prints one line
-// per image: "<ppm path>\t<render seconds>". Errors: one line, exit 1.
+// [--options JSON] [--passes] SCENE.json... (JSON: the page's load options, {"samples": 4,
+// "seed": 7}) writes OUT_DIR/<ImageName without extension>.ppm for every camera and prints
+// one line per image: "<ppm path>\t<render seconds>". An image with samples renders
+// progressively, in the page's passes (raytracer.passes, rtw_refine_part); --passes writes
+// each pass's image too, <name>.<samples per pixel>.ppm, with a line "<ppm path>\t<seconds
+// so far>\t<samples per pixel>" (the last pass's file is the image's). Errors: one line,
+// exit 1.
 // Run with --no-experimental-fetch under Node 18 and later (docs/web.md).
 "use strict";
 const fs = require("fs");
 const path = require("path");
+const vm = require("vm");
 // Another build's module: RT_WEB_DIR (as check_web.py).
 const { plyPaths, writeFiles } = require(path.join(__dirname, "..", "..", "src", "web", "scene_files.js"));
 const createRaytracerModule = require(path.join(process.env.RT_WEB_DIR || path.join(__dirname, "..", "..", "build", "web"), "rt.js"));
+
+// The page's passes (raytracer.js, which needs no worker until it renders).
+const api = { performance, console };
+api.self = api;
+vm.createContext(api);
+vm.runInContext(fs.readFileSync(path.join(__dirname, "..", "..", "src", "web", "raytracer.js"), "utf8"), api);
+const passes = api.raytracer.passes;
 
 function cString(M, s) {
   const n = M.lengthBytesUTF8(s) + 1;
   const p = M._malloc(n);
   M.stringToUTF8(s, p, n);
   return p;
+}
+
+function writePpm(file, cam, rgba) {
+  const rgb = Buffer.alloc(cam.width * cam.height * 3);
+  for (let k = 0; k < cam.width * cam.height; ++k) {
+    rgb[3 * k] = rgba[4 * k];
+    rgb[3 * k + 1] = rgba[4 * k + 1];
+    rgb[3 * k + 2] = rgba[4 * k + 2];
+  }
+  fs.writeFileSync(file, Buffer.concat([Buffer.from(`P6\n${cam.width} ${cam.height}\n255\n`), rgb]));
 }
 
 async function main() {
@@ -26,6 +48,8 @@ async function main() {
   };
   const precision = option("--precision", "double");
   const options = option("--options", "");
+  const everyPass = args.includes("--passes");
+  if (everyPass) args.splice(args.indexOf("--passes"), 1);
   const [out, ...scenes] = args;
   fs.mkdirSync(out, { recursive: true });
   const M = await createRaytracerModule();
@@ -58,23 +82,33 @@ async function main() {
     info.cameras.forEach((cam, c) => {
       const bytes = cam.width * cam.height * 4;
       const buf = M._malloc(bytes);
+      const base = path.join(out, cam.name.replace(/\.[^.]*$/, ""));
       const t0 = process.hrtime.bigint();
-      const e = M.UTF8ToString(M._rtw_render_part(c, 0, 1, buf));
-      const seconds = Number(process.hrtime.bigint() - t0) / 1e9;
-      if (e) {
+      const seconds = () => (Number(process.hrtime.bigint() - t0) / 1e9).toFixed(4);
+      const fail = (e) => {
         process.stderr.write("error: " + e + "\n");
         process.exit(1);
+      };
+      if (cam.samples > 1) {
+        let k0 = 0;
+        for (const k1 of passes(cam.samples)) {
+          const e = M.UTF8ToString(M._rtw_refine_part(c, 0, 1, k0, k1, buf));
+          if (e) fail(e);
+          k0 = k1;
+          if (everyPass) {
+            const file = base + "." + k1 + ".ppm";
+            writePpm(file, cam, M.HEAPU8.subarray(buf, buf + bytes));
+            process.stdout.write(file + "\t" + seconds() + "\t" + k1 + "\n");
+          }
+        }
+      } else {
+        const e = M.UTF8ToString(M._rtw_render_part(c, 0, 1, buf));
+        if (e) fail(e);
       }
-      const rgb = Buffer.alloc(cam.width * cam.height * 3);
-      for (let k = 0; k < cam.width * cam.height; ++k) {
-        rgb[3 * k] = M.HEAPU8[buf + 4 * k];
-        rgb[3 * k + 1] = M.HEAPU8[buf + 4 * k + 1];
-        rgb[3 * k + 2] = M.HEAPU8[buf + 4 * k + 2];
-      }
+      const time = seconds();
+      writePpm(base + ".ppm", cam, M.HEAPU8.subarray(buf, buf + bytes));
       M._free(buf);
-      const file = path.join(out, cam.name.replace(/\.[^.]*$/, "") + ".ppm");
-      fs.writeFileSync(file, Buffer.concat([Buffer.from(`P6\n${cam.width} ${cam.height}\n255\n`), rgb]));
-      process.stdout.write(file + "\t" + seconds.toFixed(4) + "\n");
+      process.stdout.write(base + ".ppm\t" + time + "\n");
     });
     M.FS.chdir("/");
   }
