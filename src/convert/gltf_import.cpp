@@ -344,6 +344,14 @@ private:
         }
     }
 
+    // Whether every vertex of `g` is within `tolerance` x r of the sphere (c, r).
+    static bool on_sphere(const GltfTriangles& g, const V3& c, double r, double tolerance) {
+        for (size_t i = 0; i < g.positions.size(); i += 3)
+            if (std::fabs(norm(sub({g.positions[i], g.positions[i + 1], g.positions[i + 2]}, c)) - r) > tolerance * r)
+                return false;
+        return true;
+    }
+
     // A tessellated sphere or plane of the export, back as itself while its vertices are
     // still on it (docs/gltf.md).
     bool as_shape(const GltfTriangles& g, const json& extras, const Affine& world, const std::vector<int>& nodes,
@@ -356,10 +364,16 @@ private:
             double r;
             if (!s.is_object() || !vec3(s.value("center", json()), c) || !number(s.value("radius", json()), r, 1e-30))
                 return false;
-            for (size_t i = 0; i < n; ++i)
-                if (std::fabs(norm(sub({g.positions[3 * i], g.positions[3 * i + 1], g.positions[3 * i + 2]}, c)) - r) >
-                    1e-4 * r)
-                    return false;
+            if (!on_sphere(g, c, r, 1e-4)) {
+                // Quantised (KHR_mesh_quantization), its positions are the sphere's moved and
+                // scaled uniformly, the node undoing it: the sphere they lie on, to within the
+                // 14 bits glTF Transform keeps (1.1e-4 of the radius).
+                c = {(g.lo[0] + g.hi[0]) / 2, (g.lo[1] + g.hi[1]) / 2, (g.lo[2] + g.hi[2]) / 2};
+                r = 0;
+                for (size_t i = 0; i < n; ++i)
+                    r += norm(sub({g.positions[3 * i], g.positions[3 * i + 1], g.positions[3 * i + 2]}, c)) / double(n);
+                if (!(r > 0) || !on_sphere(g, c, r, 2e-4)) return false;
+            }
             ojson o = ojson::object();
             o["_id"] = std::to_string(sphere_objects_.size() + 1);
             o["Material"] = material;
