@@ -116,26 +116,16 @@ std::vector<double> GltfPrimitives::numbers(int index, int type, const std::stri
     const std::string ap = "/accessors/" + std::to_string(index);
     // Floats, or KHR_mesh_quantization's integers: normalised (to [0, 1], or [-1, 1] with
     // the most negative value -1 too), or taken as they are.
-    double scale = 1;
-    switch (a.componentType) {
-        case TINYGLTF_COMPONENT_TYPE_FLOAT:
-            break;
-        case TINYGLTF_COMPONENT_TYPE_BYTE:
-            scale = a.normalized ? 1.0 / 127 : 1;
-            break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-            scale = a.normalized ? 1.0 / 255 : 1;
-            break;
-        case TINYGLTF_COMPONENT_TYPE_SHORT:
-            scale = a.normalized ? 1.0 / 32767 : 1;
-            break;
-        case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-            scale = a.normalized ? 1.0 / 65535 : 1;
-            break;
-        default:
-            fail(ap, "has component type " + std::to_string(a.componentType) + " (" + where +
-                         " needs floats, or the integers of KHR_mesh_quantization)");
-    }
+    const std::map<int, double> largest = {{TINYGLTF_COMPONENT_TYPE_FLOAT, 0},
+                                           {TINYGLTF_COMPONENT_TYPE_BYTE, 127},
+                                           {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, 255},
+                                           {TINYGLTF_COMPONENT_TYPE_SHORT, 32767},
+                                           {TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, 65535}};
+    const auto kind = largest.find(a.componentType);
+    if (kind == largest.end())
+        fail(ap, "has component type " + std::to_string(a.componentType) + " (" + where +
+                     " needs floats, or the integers of KHR_mesh_quantization)");
+    const double scale = a.normalized && kind->second > 0 ? 1 / kind->second : 1;
     const size_t n = size_t(tinygltf::GetNumComponentsInType(uint32_t(type)));
     std::vector<double> out(n * v.count, 0.0);
     if (!v.data) return out;
