@@ -93,11 +93,11 @@ TEST_BUILD := build/$(TEST_ISA)
 # (--precision, --isa); nothing else branches on them. The only code outside namespace rt,
 # compiled once, in the primary double copy: stb's (stb_impl.cpp, the writer;
 # stb_image_impl.cpp, the reader), the command-line helpers (namespace rtcli, cli/), tinygltf's
-# (namespace rtgltf, convert/gltf_io.cpp) and rtdiff's modes (namespace rtdiff, src/tools/),
+# and the glTF codecs' (namespace rtgltf, convert/gltf_io.cpp, convert/gltf_codec*.cpp) and rtdiff's modes (namespace rtdiff, src/tools/),
 # which use neither Real nor a level's instructions. FLOAT_CPPFLAGS: the sanitized and
 # WebAssembly builds' float copy.
 FLOAT_CPPFLAGS := -DRT_REAL_FLOAT -Drt=rt_float
-ONCE_SRC := src/image/stb_impl.cpp src/image/stb_image_impl.cpp src/cli/options.cpp src/cli/isa.cpp src/convert/gltf_io.cpp src/tools/%
+ONCE_SRC := src/image/stb_impl.cpp src/image/stb_image_impl.cpp src/cli/options.cpp src/cli/isa.cpp src/convert/gltf_io.cpp src/convert/gltf_codec% src/tools/%
 
 # Every src/**/*.cpp is library code except program entry points (main.cpp, *_main.cpp).
 # The library is two archives per precision: librt.a, what ./raytracer links, and

@@ -8,9 +8,9 @@
 # `make RT_STATIC=` links dynamically. Included after mk/convert.mk and mk/png.mk, which
 # add the libraries.
 
-# ./raytracer reads no OBJ file (rtconvert does): tinyobjloader, which Debian packages
-# without a static archive, is not linked into it.
-RAYTRACER_LDLIBS := $(filter-out -ltinyobjloader_double,$(LDLIBS))
+# ./raytracer reads no OBJ or glTF file (rtconvert does): tinyobjloader and libmeshoptimizer,
+# which Debian packages without a static archive, and libdraco are not linked into it.
+RAYTRACER_LDLIBS := $(filter-out -ltinyobjloader_double -lmeshoptimizer -ldraco,$(LDLIBS))
 ifeq ($(origin RT_STATIC),undefined)
   RT_STATIC := $(shell printf 'int main() {}\n' | $(CXX) -x c++ - -static -o /dev/null $(RAYTRACER_LDLIBS) \
                  2>/dev/null && echo -static)

@@ -196,7 +196,8 @@ public:
         model_.scenes.emplace_back();
         model_.defaultScene = 0;
         tinygltf::Scene& s = model_.scenes[0];
-        s.name = scene_.path;
+        // The file's name, not its path: a shared file carries none of its author's folders.
+        s.name = std::filesystem::path(scene_.path).filename().string();
         s.extras = ours_as_extras({{"backgroundColor", arr(scene_.background)},
                                    {"shadowRayEpsilon", double(scene_.shadow_ray_epsilon)},
                                    {"intersectionTestEpsilon", double(scene_.intersection_test_epsilon)},

@@ -30,11 +30,6 @@ namespace {
 
 using rtgltf::to_json;
 
-// Extensions the import reads, or may leave aside without changing what a scene shows.
-const std::set<std::string> kUnderstood = {
-    "KHR_lights_punctual",  "KHR_materials_transmission",      "KHR_materials_ior",
-    "KHR_materials_volume", "KHR_materials_emissive_strength", "KHR_texture_transform"};
-
 // What the import made of a primitive's triangles, the first time a node showed them.
 struct FirstUse {
     int base = -1;   // the Objects/Mesh _id that shows it first
@@ -63,12 +58,6 @@ public:
           primitives_(model, path, out.warnings) {}
 
     void run() {
-        for (size_t i = 0; i < model_.extensionsRequired.size(); ++i)
-            if (!kUnderstood.count(model_.extensionsRequired[i]))
-                fail("/extensionsRequired/" + std::to_string(i),
-                     "the file requires extension " + model_.extensionsRequired[i] + ", which rtconvert does not read");
-        for (const std::string& e : model_.extensionsUsed)
-            if (!kUnderstood.count(e)) warn("extension " + e + " is not read: what it adds is left out");
         traverse();
         ojson scene = ojson::object();
         scene_settings(scene);
@@ -114,22 +103,61 @@ private:
                 for (int c = 0; c < 4; ++c) rows[4 * r + c] = n.matrix[size_t(4 * c + r)];
             return Affine::rows(rows);
         }
-        // T * R * S
+        return trs(n.translation, n.rotation, n.scale, np);
+    }
+
+    // T * R * S, each left out where empty; `where` names the node or instance.
+    Affine trs(const std::vector<double>& t, const std::vector<double>& q, const std::vector<double>& s,
+               const std::string& where) const {
         Affine m;
-        if (n.scale.size() == 3) m = Affine::scaling(n.scale[0], n.scale[1], n.scale[2]);
-        if (n.rotation.size() == 4) {
-            double x = n.rotation[0], y = n.rotation[1], z = n.rotation[2], w = n.rotation[3];
+        if (s.size() == 3) m = Affine::scaling(s[0], s[1], s[2]);
+        if (q.size() == 4) {
+            double x = q[0], y = q[1], z = q[2], w = q[3];
             const double len = std::sqrt(x * x + y * y + z * z + w * w);
-            if (!(len > 0)) fail(np + "/rotation", "is not a rotation (zero quaternion)");
+            if (!(len > 0)) fail(where + "/rotation", "is not a rotation (zero quaternion)");
             x /= len, y /= len, z /= len, w /= len;
             const double r[12] = {1 - 2 * (y * y + z * z), 2 * (x * y - z * w),     2 * (x * z + y * w),     0,
                                   2 * (x * y + z * w),     1 - 2 * (x * x + z * z), 2 * (y * z - x * w),     0,
                                   2 * (x * z - y * w),     2 * (y * z + x * w),     1 - 2 * (x * x + y * y), 0};
             m = Affine::rows(r) * m;
         }
-        if (n.translation.size() == 3)
-            m = Affine::translation(n.translation[0], n.translation[1], n.translation[2]) * m;
+        if (t.size() == 3) m = Affine::translation(t[0], t[1], t[2]) * m;
         return m;
+    }
+
+    // EXT_mesh_gpu_instancing: the matrices of a node's instances, from its TRANSLATION,
+    // ROTATION and SCALE accessors (floats, or quantised).
+    std::vector<Affine> instances(const json& ext, const std::string& np) const {
+        const std::string ep = np + "/extensions/EXT_mesh_gpu_instancing";
+        const json none;
+        const json& attributes = ext.is_object() ? ext.value("attributes", none) : none;
+        if (!attributes.is_object()) fail(ep, "has no attributes");
+        std::vector<double> columns[3];  // translation, rotation, scale
+        const char* names[3] = {"TRANSLATION", "ROTATION", "SCALE"};
+        const int types[3] = {TINYGLTF_TYPE_VEC3, TINYGLTF_TYPE_VEC4, TINYGLTF_TYPE_VEC3};
+        size_t count = 0;
+        bool any = false;
+        for (size_t k = 0; k < 3; ++k) {
+            if (!attributes.contains(names[k])) continue;
+            const json& a = attributes[names[k]];
+            if (!a.is_number_integer()) fail(ep + "/attributes/" + names[k], "must name an accessor");
+            columns[k] = primitives_.numbers(a.get<int>(), types[k], ep + "/attributes/" + names[k]);
+            const size_t n = columns[k].size() / (k == 1 ? 4 : 3);
+            if (any && n != count) fail(ep + "/attributes/" + names[k], "has another count than the others");
+            count = n;
+            any = true;
+        }
+        if (!any) fail(ep, "has none of TRANSLATION, ROTATION and SCALE");
+        std::vector<Affine> out;
+        for (size_t i = 0; i < count; ++i) {
+            auto part = [&](size_t k, size_t n) {
+                return columns[k].empty() ? std::vector<double>()
+                                          : std::vector<double>(columns[k].begin() + long(n * i),
+                                                                columns[k].begin() + long(n * (i + 1)));
+            };
+            out.push_back(trs(part(0, 3), part(1, 4), part(2, 3), ep + "/" + std::to_string(i)));
+        }
+        return out;
     }
 
     void traverse() {
@@ -179,7 +207,26 @@ private:
                 fail(np + "/mesh", "mesh " + std::to_string(n.mesh) + " does not exist");
             ojson motion = ojson::object();  // the objects' own keys: MotionBlur
             read_extras(kMotionExtras, extras, extras_at(np), false, motion);
-            add_mesh(n.mesh, world, chain, motion, np);
+            if (const auto gi = n.extensions.find("EXT_mesh_gpu_instancing"); gi != n.extensions.end()) {
+                // Each instance under its own matrix, innermost: a Composite of its own.
+                for (const Affine& local : instances(to_json(gi->second), np)) {
+                    const Affine at = world * local;
+                    if (!(std::fabs(at.det()) > 0) || !std::isfinite(at.det())) {
+                        warn(np +
+                             "/extensions/EXT_mesh_gpu_instancing: an instance's transformation is singular or "
+                             "not finite: skipped");
+                        continue;
+                    }
+                    std::vector<int> with = chain;
+                    if (!local.is_identity()) {
+                        locals_.push_back(local);
+                        with.insert(with.begin(), int(locals_.size() - 1));
+                    }
+                    add_mesh(n.mesh, at, with, motion, np);
+                }
+            } else {
+                add_mesh(n.mesh, world, chain, motion, np);
+            }
         }
         if (extras.is_object() && extras.contains("areaLight")) add_area_light(extras["areaLight"], np, world);
         if (n.camera >= 0) {
@@ -297,6 +344,14 @@ private:
         }
     }
 
+    // Whether every vertex of `g` is within `tolerance` x r of the sphere (c, r).
+    static bool on_sphere(const GltfTriangles& g, const V3& c, double r, double tolerance) {
+        for (size_t i = 0; i < g.positions.size(); i += 3)
+            if (std::fabs(norm(sub({g.positions[i], g.positions[i + 1], g.positions[i + 2]}, c)) - r) > tolerance * r)
+                return false;
+        return true;
+    }
+
     // A tessellated sphere or plane of the export, back as itself while its vertices are
     // still on it (docs/gltf.md).
     bool as_shape(const GltfTriangles& g, const json& extras, const Affine& world, const std::vector<int>& nodes,
@@ -309,10 +364,16 @@ private:
             double r;
             if (!s.is_object() || !vec3(s.value("center", json()), c) || !number(s.value("radius", json()), r, 1e-30))
                 return false;
-            for (size_t i = 0; i < n; ++i)
-                if (std::fabs(norm(sub({g.positions[3 * i], g.positions[3 * i + 1], g.positions[3 * i + 2]}, c)) - r) >
-                    1e-4 * r)
-                    return false;
+            if (!on_sphere(g, c, r, 1e-4)) {
+                // Quantised (KHR_mesh_quantization), its positions are the sphere's moved and
+                // scaled uniformly, the node undoing it: the sphere they lie on, to within the
+                // 14 bits glTF Transform keeps (1.1e-4 of the radius).
+                c = {(g.lo[0] + g.hi[0]) / 2, (g.lo[1] + g.hi[1]) / 2, (g.lo[2] + g.hi[2]) / 2};
+                r = 0;
+                for (size_t i = 0; i < n; ++i)
+                    r += norm(sub({g.positions[3 * i], g.positions[3 * i + 1], g.positions[3 * i + 2]}, c)) / double(n);
+                if (!(r > 0) || !on_sphere(g, c, r, 2e-4)) return false;
+            }
             ojson o = ojson::object();
             o["_id"] = std::to_string(sphere_objects_.size() + 1);
             o["Material"] = material;
@@ -602,7 +663,7 @@ private:
     GltfPrimitives primitives_;
     std::map<const GltfTriangles*, FirstUse> first_use_;
     std::vector<bool> visited_;
-    std::vector<Affine> locals_;          // each node's own matrix
+    std::vector<Affine> locals_;          // each node's own matrix, then each GPU instance's
     std::map<int, size_t> composite_of_;  // node -> its Composite's _id
     std::vector<CameraUse> camera_uses_;
     json scene_extras_;

@@ -13,6 +13,7 @@
 #define TINYGLTF_NO_INCLUDE_STB_IMAGE_WRITE
 #endif
 #include "gltf_io.h"  // includes tiny_gltf.h, here with its implementation
+#include "gltf_codecs.h"
 
 #include <cstring>
 #include <regex>
@@ -35,21 +36,86 @@ std::string first_line(const std::string& text) {
     return std::regex_replace(line, kIndexed, "/$1s/$2");
 }
 
+// tinygltf writes zfar 0 for a perspective camera without one (its "infinite"); glTF has
+// no zfar 0: an infinite projection leaves it out.
+void drop_zero_zfar(nlohmann::ordered_json& j) {
+    if (!j.contains("cameras")) return;
+    for (auto& c : j["cameras"])
+        if (c.contains("perspective") && c["perspective"].value("zfar", 1.0) == 0.0) c["perspective"].erase("zfar");
+}
+
+void append_u32(std::string& out, uint32_t v) {
+    char b[4];
+    std::memcpy(b, &v, 4);  // GLB is little-endian, as every target here
+    out.append(b, 4);
+}
+
+// A GLB container: the 12-byte header, the JSON chunk (padded with spaces) and, when `bin`
+// is not empty, the BIN chunk (padded with zeros), each 4-byte aligned.
+std::string glb(std::string json, const std::string& bin) {
+    json.append((4 - json.size() % 4) % 4, ' ');
+    const size_t bin_padded = bin.size() + (4 - bin.size() % 4) % 4;
+    const size_t total = 12 + 8 + json.size() + (bin.empty() ? 0 : 8 + bin_padded);
+    if (total > UINT32_MAX) throw Error("the model is too large for a GLB file (over 4 GiB)");
+    std::string out = "glTF";
+    append_u32(out, 2);
+    append_u32(out, uint32_t(total));
+    append_u32(out, uint32_t(json.size()));
+    out += "JSON";
+    out += json;
+    if (!bin.empty()) {
+        append_u32(out, uint32_t(bin_padded));
+        out.append("BIN\0", 4);
+        out += bin;
+        out.append(bin_padded - bin.size(), '\0');
+    }
+    return out;
+}
+
+// The JSON and BIN chunks of a GLB container; false when it is not one (tinygltf names what
+// is wrong).
+bool split_glb(const std::string& bytes, std::string& json, std::string& bin) {
+    auto u32 = [&](size_t at) {
+        uint32_t v;
+        std::memcpy(&v, bytes.data() + at, 4);
+        return size_t(v);
+    };
+    if (bytes.size() < 20 || bytes.compare(16, 4, "JSON") != 0 || u32(12) > bytes.size() - 20) return false;
+    json = bytes.substr(20, u32(12));
+    const size_t next = 20 + u32(12);
+    bin.clear();
+    if (bytes.size() >= next + 8 && bytes.compare(next + 4, 4, std::string("BIN\0", 4)) == 0 &&
+        u32(next) <= bytes.size() - next - 8)
+        bin = bytes.substr(next + 8, u32(next));
+    return true;
+}
+
 }  // namespace
 
-void parse(const std::string& bytes, const std::string& path, const std::string& base_dir, tinygltf::Model& model,
+void parse(const std::string& file_bytes, const std::string& path, const std::string& base_dir, tinygltf::Model& model,
            std::vector<std::string>& warnings) {
     tinygltf::TinyGLTF gltf;
     gltf.SetImageLoader(skip_image, nullptr);
     std::string err, warn;
-    const bool binary = bytes.size() >= 4 && bytes.compare(0, 4, "glTF") == 0;
-    if (binary && bytes.size() >= 12) {  // the GLB header: magic, version, total length
+    const bool binary = file_bytes.size() >= 4 && file_bytes.compare(0, 4, "glTF") == 0;
+    if (binary && file_bytes.size() >= 12) {  // the GLB header: magic, version, total length
         uint32_t length;
-        std::memcpy(&length, bytes.data() + 8, 4);
-        if (length > bytes.size())
+        std::memcpy(&length, file_bytes.data() + 8, 4);
+        if (length > file_bytes.size())
             throw Error(path + ": truncated: its GLB header says " + std::to_string(length) + " bytes, the file has " +
-                        std::to_string(bytes.size()));
+                        std::to_string(file_bytes.size()));
     }
+    // The extensions it requires checked, and a compressed file's JSON made one tinygltf
+    // reads (gltf_codecs.h); JSON that does not parse is left to tinygltf's error.
+    Compressed compressed;
+    std::string rewritten;
+    std::string json_text, bin;
+    if (binary ? split_glb(file_bytes, json_text, bin) : (json_text = file_bytes, true)) {
+        nlohmann::json j = nlohmann::json::parse(json_text, nullptr, false);
+        if (!j.is_discarded() && prepare(j, path, compressed, warnings))
+            rewritten = binary ? glb(j.dump(), bin) : j.dump();
+    }
+    const std::string& bytes = rewritten.empty() ? file_bytes : rewritten;
     const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
     const bool ok = binary
                         ? gltf.LoadBinaryFromMemory(&model, &err, &warn, data, unsigned(bytes.size()), base_dir)
@@ -70,33 +136,40 @@ void parse(const std::string& bytes, const std::string& path, const std::string&
         }
         throw Error(path + ": " + what);
     }
+    decode(model, compressed, path);
     std::istringstream lines(warn);
     for (std::string line; std::getline(lines, line);)
         if (!line.empty()) warnings.push_back(path + ": " + first_line(line));
 }
 
 Serialized serialize(tinygltf::Model& model, bool binary, const std::string& bin_name) {
-    Serialized out;
+    // tinygltf writes the JSON, buffer 0's bytes set aside (it would embed them as a data
+    // URI); then the fix above, and buffer 0 named: the .bin beside a .gltf, or the BIN
+    // chunk of a .glb.
+    std::vector<unsigned char> bin;
+    if (!model.buffers.empty()) std::swap(bin, model.buffers[0].data);
     std::ostringstream text;
-    tinygltf::TinyGLTF gltf;
-    if (binary || model.buffers.empty()) {
-        if (!gltf.WriteGltfSceneToStream(&model, text, /*prettyPrint=*/true, binary))
-            throw Error("tinygltf could not write the model");
-        out.main = text.str();
-        return out;
-    }
-    // .gltf: tinygltf's stream writer embeds buffers as data URIs; buffer 0 goes beside
-    // the file instead, and the JSON names it.
-    std::vector<unsigned char> data = std::move(model.buffers[0].data);
-    model.buffers[0].data.clear();
-    const bool ok = gltf.WriteGltfSceneToStream(&model, text, /*prettyPrint=*/true, false);
-    model.buffers[0].data = std::move(data);
+    const bool ok = tinygltf::TinyGLTF().WriteGltfSceneToStream(&model, text, /*prettyPrint=*/true, false);
+    if (!model.buffers.empty()) std::swap(bin, model.buffers[0].data);
     if (!ok) throw Error("tinygltf could not write the model");
     nlohmann::ordered_json j = nlohmann::ordered_json::parse(text.str());
-    j["buffers"][0]["uri"] = bin_name;
-    j["buffers"][0]["byteLength"] = model.buffers[0].data.size();
-    out.main = j.dump(2) + "\n";
-    out.bin.assign(reinterpret_cast<const char*>(model.buffers[0].data.data()), model.buffers[0].data.size());
+    drop_zero_zfar(j);
+    Serialized out;
+    if (!model.buffers.empty()) {
+        const std::vector<unsigned char>& bytes = model.buffers[0].data;
+        out.bin.assign(reinterpret_cast<const char*>(bytes.data()), bytes.size());
+        if (binary)
+            j["buffers"][0].erase("uri");
+        else
+            j["buffers"][0]["uri"] = bin_name;
+        j["buffers"][0]["byteLength"] = bytes.size();
+    }
+    if (!binary) {
+        out.main = j.dump(2) + "\n";
+        return out;
+    }
+    out.main = glb(j.dump(), out.bin);
+    out.bin.clear();
     return out;
 }
 

@@ -1,6 +1,8 @@
 // glTF triangle primitives (gltf_primitives.h, docs/gltf.md).
 #include "gltf_primitives.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <cstring>
 
 #include "rt/core/error.h"
@@ -108,18 +110,57 @@ GltfPrimitives::View GltfPrimitives::view(int index, int component, int type, co
     return v;
 }
 
-std::vector<double> GltfPrimitives::floats3(int index, const std::string& where) const {
-    const View v = view(index, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, where);
-    std::vector<double> out(3 * v.count, 0.0);
+std::vector<double> GltfPrimitives::numbers(int index, int type, const std::string& where) const {
+    const View v = view(index, -1, type, where);
+    const tinygltf::Accessor& a = model_.accessors[size_t(index)];
+    const std::string ap = "/accessors/" + std::to_string(index);
+    // Floats, or KHR_mesh_quantization's integers: normalised (to [0, 1], or [-1, 1] with
+    // the most negative value -1 too), or taken as they are.
+    const std::map<int, double> largest = {{TINYGLTF_COMPONENT_TYPE_FLOAT, 0},
+                                           {TINYGLTF_COMPONENT_TYPE_BYTE, 127},
+                                           {TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE, 255},
+                                           {TINYGLTF_COMPONENT_TYPE_SHORT, 32767},
+                                           {TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT, 65535}};
+    const auto kind = largest.find(a.componentType);
+    if (kind == largest.end())
+        fail(ap, "has component type " + std::to_string(a.componentType) + " (" + where +
+                     " needs floats, or the integers of KHR_mesh_quantization)");
+    const double scale = a.normalized && kind->second > 0 ? 1 / kind->second : 1;
+    const size_t n = size_t(tinygltf::GetNumComponentsInType(uint32_t(type)));
+    std::vector<double> out(n * v.count, 0.0);
     if (!v.data) return out;
     for (size_t i = 0; i < v.count; ++i)
-        for (size_t k = 0; k < 3; ++k) {
-            float f;
-            std::memcpy(&f, v.data + i * v.stride + 4 * k, 4);
-            if (!(std::fabs(f) <= kMaxMagnitude))  // the loader's bound (rt/loader/scene_desc.h)
-                fail("/accessors/" + std::to_string(index),
-                     "element " + std::to_string(i) + " is not a finite number within +-1e30");
-            out[3 * i + k] = f;
+        for (size_t k = 0; k < n; ++k) {
+            const unsigned char* p = v.data + i * v.stride;
+            double x = 0;
+            switch (a.componentType) {
+                case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+                    float f;
+                    std::memcpy(&f, p + 4 * k, 4);
+                    x = f;
+                    break;
+                }
+                case TINYGLTF_COMPONENT_TYPE_BYTE:
+                    x = std::max(int8_t(p[k]) * scale, a.normalized ? -1.0 : -128.0);
+                    break;
+                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+                    x = p[k] * scale;
+                    break;
+                case TINYGLTF_COMPONENT_TYPE_SHORT: {
+                    int16_t s;
+                    std::memcpy(&s, p + 2 * k, 2);
+                    x = std::max(s * scale, a.normalized ? -1.0 : -32768.0);
+                    break;
+                }
+                default: {  // unsigned short
+                    uint16_t s;
+                    std::memcpy(&s, p + 2 * k, 2);
+                    x = s * scale;
+                }
+            }
+            if (!(std::fabs(x) <= kMaxMagnitude))  // the loader's bound (rt/loader/scene_desc.h)
+                fail(ap, "element " + std::to_string(i) + " is not a finite number within +-1e30");
+            out[n * i + k] = x;
         }
     return out;
 }
@@ -170,7 +211,7 @@ const GltfTriangles* GltfPrimitives::get(int m, int p) {
     const auto key = std::make_pair(pos->second, prim.indices);
     if (const auto it = read_.find(key); it != read_.end()) return &it->second;
     GltfTriangles g;
-    g.positions = floats3(pos->second, where + "/attributes/POSITION");
+    g.positions = numbers(pos->second, TINYGLTF_TYPE_VEC3, where + "/attributes/POSITION");
     const size_t n = g.positions.size() / 3;
     if (prim.indices >= 0) {
         g.indices = indices(prim.indices, n, where);
@@ -184,7 +225,7 @@ const GltfTriangles* GltfPrimitives::get(int m, int p) {
     }
     const json extras = ours_in(model_.meshes[size_t(m)].extras);
     if (const auto nrm = prim.attributes.find("NORMAL"); nrm != prim.attributes.end()) {
-        const std::vector<double> normals = floats3(nrm->second, where + "/attributes/NORMAL");
+        const std::vector<double> normals = numbers(nrm->second, TINYGLTF_TYPE_VEC3, where + "/attributes/NORMAL");
         g.smooth = !flat_normals(g, normals);
         // Vertices as the export wrote them need no welding; other tools split them.
         const bool as_exported = extras.is_object() && extras.value("vertices", json()) == json(n);

@@ -50,6 +50,11 @@ public:
     // for anything malformed.
     const GltfTriangles* get(int m, int p);
 
+    // Accessor `index` as numbers, the components of `type` (TINYGLTF_TYPE_VEC3, ...) per
+    // element: floats, or KHR_mesh_quantization's integers (normalised or not) dequantised.
+    // `where` names its user. Throws rt::InputError naming the accessor.
+    std::vector<double> numbers(int index, int type, const std::string& where) const;
+
 private:
     [[noreturn]] void fail(const std::string& element, const std::string& what) const;
     void warn(const std::string& what) { warnings_.push_back(path_ + ": " + what); }
@@ -59,7 +64,6 @@ private:
         size_t stride = 0, count = 0;
     };
     View view(int index, int component, int type, const std::string& where) const;
-    std::vector<double> floats3(int index, const std::string& where) const;
     std::vector<uint32_t> indices(int index, size_t vertices, const std::string& where) const;
 
     const tinygltf::Model& model_;

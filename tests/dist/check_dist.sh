@@ -10,7 +10,7 @@
 # When run as root with unshare(1) available, the build runs in a private mount
 # namespace in which the Debian headers and libraries this project uses
 # (nlohmann-json3-dev, libcli11-dev, libstb-dev, libdeflate-dev, libpugixml-dev, libtinyobjloader-dev,
-# libgtest-dev) are hidden, as on a machine with only g++. Otherwise it builds with
+# libmeshoptimizer-dev, libdraco-dev, libgtest-dev) are hidden, as on a machine with only g++. Otherwise it builds with
 # RT_HAVE_PUGIXML= RT_HAVE_TINYOBJ= RT_HAVE_LIBDEFLATE= and relies on the checks below: the compile lines
 # use -Ithird_party, nothing links libstb/libdeflate/pugixml/tinyobjloader, and no dependency file
 # names a header outside the tarball but the C/C++ runtime's.
@@ -59,13 +59,13 @@ mount --bind /usr/include "$work/orig_include"
 for f in "$work"/orig_include/* "$work"/orig_include/.[!.]*; do
     [ -e "$f" ] || continue
     case "$(basename "$f")" in
-        nlohmann|CLI|stb|libdeflate.h|pugixml.hpp|pugiconfig.hpp|tiny_obj_loader.h|tiny_gltf.h|gtest|gmock) continue ;;
+        nlohmann|CLI|stb|libdeflate.h|pugixml.hpp|pugiconfig.hpp|tiny_obj_loader.h|tiny_gltf.h|meshoptimizer.h|draco|gtest|gmock) continue ;;
     esac
     ln -sfn "$f" "$work/include_farm/$(basename "$f")"
 done
 mount --bind "$work/include_farm" /usr/include
 : >"$work/empty"
-for lib in /usr/lib/*/libstb.* /usr/lib/*/libdeflate.* /usr/lib/*/libpugixml.* /usr/lib/*/libtinyobjloader* /usr/lib/*/libtinygltf* /usr/lib/*/libgtest*; do
+for lib in /usr/lib/*/libstb.* /usr/lib/*/libdeflate.* /usr/lib/*/libpugixml.* /usr/lib/*/libtinyobjloader* /usr/lib/*/libtinygltf* /usr/lib/*/libmeshoptimizer* /usr/lib/*/libdraco* /usr/lib/*/libgtest*; do
     [ -e "$lib" ] && mount --bind "$work/empty" "$lib"
 done
 cd "$work/src"
@@ -80,7 +80,7 @@ build() {
     if [ $hidden = yes ]; then
         unshare -m sh "$work/hide.sh" "$work" "$log" make "$@"
     else
-        sh "$work/timed.sh" "$log" make RT_HAVE_PUGIXML= RT_HAVE_TINYOBJ= RT_HAVE_LIBDEFLATE= "$@"
+        sh "$work/timed.sh" "$log" make RT_HAVE_PUGIXML= RT_HAVE_TINYOBJ= RT_HAVE_LIBDEFLATE= RT_HAVE_MESHOPT= RT_HAVE_DRACO= "$@"
     fi
 }
 
@@ -92,7 +92,7 @@ awk -v w="$wall" -v l="$limit" 'BEGIN { exit !(w <= l) }' || fail "plain make to
 grep -q -- '-Ithird_party' "$work/build.log" || fail "the build did not use -Ithird_party"
 grep -q 'stb_impl' "$work/build.log" || fail "src/image/stb_impl.cpp was not compiled"
 grep -q -- '-DRT_NO_LIBDEFLATE' "$work/build.log" || fail "the build did not fall back to stb's compressor (-DRT_NO_LIBDEFLATE)"
-if grep -E -- '-l(stb|deflate|pugixml|tinyobjloader)' "$work/build.log"; then fail "the build links a packaged library"; fi
+if grep -E -- '-l(stb|deflate|pugixml|tinyobjloader|meshoptimizer|draco)' "$work/build.log"; then fail "the build links a packaged library"; fi
 [ -x raytracer ] || fail "no ./raytracer"
 [ ! -e rtconvert ] || fail "plain make built ./rtconvert"
 [ ! -e rtdiff ] || fail "plain make built ./rtdiff"
@@ -102,7 +102,7 @@ fi
 if find build -name '*.d' -exec cat {} + | grep -E '/usr/include/(nlohmann|CLI|stb|libdeflate|pugixml|tiny_obj|tiny_gltf)'; then
     fail "a dependency file names a packaged header"
 fi
-if ldd ./raytracer | grep -E 'libstb|libdeflate|pugixml|tinyobj'; then fail "./raytracer needs a packaged library"; fi
+if ldd ./raytracer | grep -E 'libstb|libdeflate|pugixml|tinyobj|meshoptimizer|draco'; then fail "./raytracer needs a packaged library"; fi
 
 ./raytracer scenes/showcase.json >"$work/run.log" 2>&1 || { cat "$work/run.log"; fail "./raytracer scenes/showcase.json failed"; }
 [ -s showcase.png ] || fail "no showcase.png"

@@ -42,10 +42,10 @@ def run(cmd, **kw):
     return r
 
 
-def render(scene, out):
-    """./raytracer's images of `scene` in `out`: {image file name: path}."""
+def render(scene, out, options=()):
+    """./raytracer's images of `scene` in `out` (with `options`): {image file name: path}."""
     os.makedirs(out, exist_ok=True)
-    run([RAYTRACER, "-q", "-o", out, scene])
+    run([RAYTRACER, "-q"] + list(options) + ["-o", out, scene])
     return {n: os.path.join(out, n) for n in sorted(os.listdir(out)) if n.endswith(".png")}
 
 

@@ -1,0 +1,194 @@
+// glTF files every tool accepts, and what pipelines add (docs/gltf.md): the exports leave
+// zfar out and name the scene by its file; quantised attributes (KHR_mesh_quantization) are
+// dequantised exactly under their node's transform; GPU instances (EXT_mesh_gpu_instancing)
+// are instances; an unread required extension is the one line, before anything else fails.
+// The compressed files: tests/test_convert_gltf_codecs.cpp.
+#include <gtest/gtest.h>
+
+#if !defined(RT_NO_GLTF) && !defined(RT_NO_XML) && !defined(RT_NO_OBJ)
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "convert_test_support.h"
+#include "gltf_test_support.h"
+#include "rt/convert/convert.h"
+#include "rt/loader/load_scene.h"
+#include "rt/loader/shape_descs.h"
+#include "test_support.h"
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+using namespace convert_test;
+
+namespace {
+
+// A course scene of one triangle, one camera, one light.
+std::string tiny_scene(const TempDir& tmp) {
+    std::ofstream(tmp / "tiny.json") << R"({"Scene": {"BackgroundColor": "0 0 0", "MaxRecursionDepth": "1",
+        "Cameras": {"Camera": {"_id": "1", "Position": "0 0 5", "Gaze": "0 0 -1", "Up": "0 1 0",
+            "NearPlane": "-1 1 -1 1", "NearDistance": "1", "ImageResolution": "8 8", "ImageName": "t.png"}},
+        "Lights": {"AmbientLight": "10 10 10", "PointLight": {"_id": "1", "Position": "0 0 5", "Intensity": "100 100 100"}},
+        "Materials": {"Material": {"_id": "1", "AmbientReflectance": "1 1 1", "DiffuseReflectance": "1 1 1",
+            "SpecularReflectance": "0 0 0", "PhongExponent": "1"}},
+        "VertexData": {"_data": "0 0 0 1 0 0 0 1 0"},
+        "Objects": {"Triangle": {"_id": "1", "Material": "1", "Indices": "1 2 3"}}}})";
+    return tmp / "tiny.json";
+}
+
+// The JSON of a .gltf, or of a .glb's JSON chunk.
+json gltf_json(const std::string& path) {
+    const std::string bytes = read_text(path);
+    if (bytes.compare(0, 4, "glTF") != 0) return json::parse(bytes);
+    uint32_t length;
+    std::memcpy(&length, bytes.data() + 12, 4);
+    return json::parse(bytes.substr(20, length));
+}
+
+}  // namespace
+
+// ---- Exports the validator accepts ---------------------------------------------------------
+
+TEST(GltfExportValid, NoZfarAndTheSceneNamedByItsFile) {
+    TempDir tmp;
+    for (const char* out : {"t.gltf", "t.glb"}) {
+        SCOPED_TRACE(out);
+        rt::convert_file(tiny_scene(tmp), tmp / out);
+        const json j = gltf_json(tmp / out);
+        ASSERT_EQ(j["cameras"].size(), 1u);
+        EXPECT_FALSE(j["cameras"][0]["perspective"].contains("zfar"));  // glTF's infinite projection
+        EXPECT_GT(j["cameras"][0]["perspective"]["znear"].get<double>(), 0);
+        EXPECT_EQ(j["scenes"][0]["name"], "tiny.json");  // not the author's folders
+        // And it reads back as the same triangle.
+        const Imported im = import(tmp, tmp / out);
+        ASSERT_EQ(world_triangles(im.scene).size(), 1u);
+    }
+    // The .glb's chunks are 4-byte aligned and its header's length is the file's.
+    const std::string glb = read_text(tmp / "t.glb");
+    uint32_t total, json_length;
+    std::memcpy(&total, glb.data() + 8, 4);
+    std::memcpy(&json_length, glb.data() + 12, 4);
+    EXPECT_EQ(total, glb.size());
+    EXPECT_EQ(json_length % 4, 0u);
+    EXPECT_EQ(glb.compare(20 + json_length + 4, 4, std::string("BIN\0", 4)), 0);
+}
+
+// ---- KHR_mesh_quantization --------------------------------------------------------------
+
+TEST(GltfQuantized, EveryComponentTypeDequantisedUnderItsNodesTransform) {
+    TempDir tmp;
+    struct Case {
+        int component;
+        bool normalized;
+        std::vector<int> values;  // one triangle, x y z per corner
+        std::vector<double> expected;
+    };
+    const std::vector<Case> cases = {
+        {5122, true, {0, 0, 0, 32767, 0, 0, 0, -32768, 16384}, {0, 0, 0, 1, 0, 0, 0, -1, 16384.0 / 32767}},
+        {5123, true, {0, 0, 0, 65535, 0, 0, 0, 13107, 0}, {0, 0, 0, 1, 0, 0, 0, 0.2, 0}},
+        {5120, true, {0, 0, 0, 127, 0, 0, 0, -128, 64}, {0, 0, 0, 1, 0, 0, 0, -1, 64.0 / 127}},
+        {5121, true, {0, 0, 0, 255, 0, 0, 0, 51, 0}, {0, 0, 0, 1, 0, 0, 0, 0.2, 0}},
+        {5122, false, {0, 0, 0, 300, 0, 0, 0, -7, 2}, {0, 0, 0, 300, 0, 0, 0, -7, 2}},
+        {5121, false, {0, 0, 0, 3, 0, 0, 0, 200, 1}, {0, 0, 0, 3, 0, 0, 0, 200, 1}}};
+    for (const Case& c : cases) {
+        SCOPED_TRACE(std::to_string(c.component) + (c.normalized ? " normalized" : ""));
+        GltfFile f;
+        const size_t size = c.component == 5120 || c.component == 5121 ? 1 : 2;
+        std::vector<unsigned char> bytes;
+        for (size_t i = 0; i < c.values.size(); ++i) {
+            if (i % 3 == 0) bytes.resize((i / 3) * 4 * size);  // a 4-byte stride, as writers pad
+            const int16_t v = int16_t(c.values[i]);
+            const unsigned char* b = reinterpret_cast<const unsigned char*>(&v);
+            bytes.insert(bytes.end(), b, b + size);
+        }
+        bytes.resize(3 * 4 * size);
+        const int view = f.view(bytes.data(), bytes.size());
+        f.j["bufferViews"][size_t(view)]["byteStride"] = 4 * size;
+        f.j["accessors"].push_back(
+            {{"bufferView", view}, {"componentType", c.component}, {"count", 3}, {"type", "VEC3"}});
+        if (c.normalized) f.j["accessors"].back()["normalized"] = true;
+        f.j["meshes"].push_back({{"primitives", {{{"attributes", {{"POSITION", 0}}}}}}});
+        f.j["extensionsUsed"] = f.j["extensionsRequired"] = {"KHR_mesh_quantization"};
+        // glTF Transform's dequantisation: a scale and an offset on the node.
+        f.node({{"mesh", 0}, {"translation", {1, 2, 3}}, {"scale", {2, 2, 2}}});
+        const Imported im = import(tmp, f.write(tmp));
+        const auto tris = world_triangles(im.scene);
+        ASSERT_EQ(tris.size(), 1u);
+        std::vector<std::array<double, 3>> want, got;
+        for (size_t k = 0; k < 3; ++k) {
+            want.push_back({1 + 2 * c.expected[3 * k], 2 + 2 * c.expected[3 * k + 1], 3 + 2 * c.expected[3 * k + 2]});
+            got.push_back({tris[0][3 * k], tris[0][3 * k + 1], tris[0][3 * k + 2]});
+        }
+        std::sort(want.begin(), want.end());
+        std::sort(got.begin(), got.end());
+        for (size_t k = 0; k < 3; ++k)
+            for (size_t a = 0; a < 3; ++a)  // to the precision's rounding of the loaded scene
+                EXPECT_NEAR(got[k][a], want[k][a], 8 * std::numeric_limits<rt::Real>::epsilon() * 5) << k << " " << a;
+    }
+}
+
+TEST(GltfQuantized, ANonNumericComponentTypeIsRefusedNamingTheAccessor) {
+    TempDir tmp;
+    GltfFile f;
+    const std::vector<uint32_t> ints = {0, 0, 0, 1, 0, 0, 0, 1, 0};
+    const int view = f.view(ints.data(), ints.size() * 4);
+    f.j["accessors"].push_back({{"bufferView", view}, {"componentType", 5125}, {"count", 3}, {"type", "VEC3"}});
+    f.j["meshes"].push_back({{"primitives", {{{"attributes", {{"POSITION", 0}}}}}}});
+    f.node({{"mesh", 0}});
+    const std::string e = refused(tmp, f.write(tmp, "ints.gltf"));
+    EXPECT_TRUE(contains(e, "/accessors/0: has component type 5125")) << e;
+}
+
+// ---- EXT_mesh_gpu_instancing -------------------------------------------------------------
+
+TEST(GltfGpuInstancing, EachInstanceIsTheMeshUnderItsOwnMatrix) {
+    TempDir tmp;
+    GltfFile f;
+    const int mesh = f.mesh(kTriangle, {0, 1, 2});
+    const std::vector<float> t = {0, 0, 0, 10, 0, 0, 0, 10, 0};
+    const int view = f.view(t.data(), t.size() * 4);
+    f.j["accessors"].push_back({{"bufferView", view}, {"componentType", 5126}, {"count", 3}, {"type", "VEC3"}});
+    const int translation = int(f.j["accessors"].size() - 1);
+    f.j["extensionsUsed"] = {"EXT_mesh_gpu_instancing"};
+    f.node({{"mesh", mesh},
+            {"translation", {0, 0, -1}},
+            {"extensions", {{"EXT_mesh_gpu_instancing", {{"attributes", {{"TRANSLATION", translation}}}}}}}});
+    const Imported im = import(tmp, f.write(tmp));
+    EXPECT_FALSE(any_contains(im.result.warnings, "EXT_mesh_gpu_instancing"));
+    EXPECT_EQ(im.scene.meshes.size(), 1u);
+    EXPECT_EQ(im.tree["Scene"]["Objects"]["MeshInstance"].size(), 2u);  // and the Mesh
+    const auto tris = world_triangles(im.scene);
+    ASSERT_EQ(tris.size(), 3u);
+    // Sorted: the instance at the origin, at y 10, at x 10; each moved by the node's -1 in z.
+    EXPECT_EQ(tris[0], (std::array<double, 9>{0, 0, -1, 1, 0, -1, 0, 1, -1}));
+    EXPECT_EQ(tris[1], (std::array<double, 9>{0, 10, -1, 1, 10, -1, 0, 11, -1}));
+    EXPECT_EQ(tris[2], (std::array<double, 9>{10, 0, -1, 11, 0, -1, 10, 1, -1}));
+}
+
+// ---- A file that requires what rtconvert does not read ---------------------------------------
+
+TEST(GltfExtensions, AnUnreadRequiredExtensionIsNamedBeforeAnythingElseFails) {
+    TempDir tmp;
+    GltfFile f;
+    f.node({{"mesh", f.mesh(kTriangle, {0, 1, 2})}});
+    f.j["extensionsRequired"] = {"KHR_mesh_quantization", "KHR_texture_basisu"};
+    f.write(tmp, "basisu.gltf");
+    // Its buffer is missing too: the extension is what the line names.
+    fs::remove(tmp / "data.bin");
+    const std::string e = refused(tmp, tmp / "basisu.gltf");
+    EXPECT_TRUE(contains(e,
+                         "basisu.gltf: /extensionsRequired/1: the file requires extension KHR_texture_basisu, "
+                         "which rtconvert does not read"))
+        << e;
+}
+
+#endif
