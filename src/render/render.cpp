@@ -57,11 +57,9 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
     std::vector<RayCounts> rays(static_cast<size_t>(threads));
     std::vector<uint64_t> samples_taken(static_cast<size_t>(threads), 0);
     // Each pixel's sample count, when asked for: every pixel written by one worker.
-    uint32_t* counts = nullptr;
-    if (stats && options.count_samples) {
-        stats->pixel_samples.assign(static_cast<size_t>(cam.width) * cam.height, 0);
-        counts = stats->pixel_samples.data();
-    }
+    std::vector<uint32_t> pixel_samples;
+    if (stats && options.count_samples) pixel_samples.assign(static_cast<size_t>(cam.width) * cam.height, 0);
+    uint32_t* const counts = pixel_samples.empty() ? nullptr : pixel_samples.data();
 
     auto work = [&](int worker) {
         TraceCache cache;  // per thread
@@ -166,7 +164,6 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
     for (HelperThread& t : pool) t.join();
 
     if (stats) {
-        std::vector<uint32_t> pixel_samples = std::move(stats->pixel_samples);
         *stats = RenderStats{};
         stats->pixel_samples = std::move(pixel_samples);
         for (const RayCounts& r : rays) stats->rays += r;
