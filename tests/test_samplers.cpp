@@ -228,42 +228,130 @@ TEST(PixelSamples, AddedInPartsAreTheWhole) {
     }
 }
 
+rt::Vec3 rgb(double r, double g, double b) { return rt::Vec3{Real(r), Real(g), Real(b)}; }
+
+TEST(AdaptiveSampling, EstimatesFromSamplesOrFromBlocksOfSobolPoints) {
+    // 8 samples, red 0, 10, 0, 10, ...: independent samples' variance (400 - 40^2 / 8) / 7,
+    // over 8; Sobol's blocks of 2 all sum to 10: no spread.
+    rt::PixelSum alternating;
+    for (int k = 0; k < 8; ++k) alternating.add(rgb(k % 2 ? 10 : 0, 5, 300), true);
+    EXPECT_NEAR(alternating.standard_error(false), std::sqrt(200.0 / 7 / 8), 1e-12);
+    EXPECT_NEAR(alternating.standard_error(true), 0, 1e-12);
+    // Red 0, 0, 10, 10, ...: blocks of 2 sum to 0, 20, 0, 20, their means 0, 10, 0, 10:
+    // variance 100 / 3, over 4 blocks.
+    rt::PixelSum pairs;
+    for (int k = 0; k < 8; ++k) pairs.add(rgb(k % 4 < 2 ? 0 : 10, 5, 300), true);
+    EXPECT_NEAR(pairs.standard_error(false), std::sqrt(200.0 / 7 / 8), 1e-12);
+    EXPECT_NEAR(pairs.standard_error(true), std::sqrt(100.0 / 3 / 4), 1e-12);
+    // 24 samples: blocks of 4 (6 of them); 40: blocks of 8 (5). Red 0 in the first half
+    // of each block of 8, 10 in the second: blocks of 4 alternate 0 and 10 (variance 30
+    // over 6, its mean 5: (6 * 25 + ...) = 150 / 5 = 30); blocks of 8 all mean 5.
+    rt::PixelSum halves;
+    for (int k = 0; k < 24; ++k) halves.add(rgb(k % 8 < 4 ? 0 : 10, 5, 5), true);
+    EXPECT_NEAR(halves.standard_error(true), std::sqrt(30.0 / 6), 1e-12);
+    for (int k = 24; k < 40; ++k) halves.add(rgb(k % 8 < 4 ? 0 : 10, 5, 5), true);
+    EXPECT_NEAR(halves.standard_error(true), 0, 1e-12);
+    // Below two samples nothing is known; clamped values above 255 do not vary.
+    rt::PixelSum one;
+    one.add(rgb(1, 2, 3), true);
+    EXPECT_TRUE(std::isinf(one.standard_error(true)));
+    // Without noise sums (a fixed count) only the radiance is summed.
+    rt::PixelSum plain;
+    plain.add(rgb(1, 2, 3), false);
+    EXPECT_EQ(plain.n, 1);
+    EXPECT_EQ(plain.squares[0], 0);
+}
+
+TEST(AdaptiveSampling, FirstSamplesAPowerOfTwoFrom8To32UpToAQuarterOfTheCount) {
+    EXPECT_EQ(rt::adaptive_first(0), 8);
+    EXPECT_EQ(rt::adaptive_first(36), 8);
+    EXPECT_EQ(rt::adaptive_first(63), 8);
+    EXPECT_EQ(rt::adaptive_first(64), 16);
+    EXPECT_EQ(rt::adaptive_first(100), 16);
+    EXPECT_EQ(rt::adaptive_first(128), 32);
+    EXPECT_EQ(rt::adaptive_first(900), 32);
+}
+
+TEST(AdaptiveSampling, APixelIsJudgedByItsOwnNoiseOrItsNeighbours) {
+    // A 3 x 2 region: per-sample noise 8 at (1, 0), 4 at (2, 1), 0 elsewhere.
+    const double noise[6] = {0, 8, 0, 0, 0, 4};
+    // (0, 0): neighbours (1, 0), (0, 1), (1, 1): mean 8 / 3.
+    EXPECT_DOUBLE_EQ(rt::judged_noise(noise, 3, 2, 0, 0), rt::kNeighbourShare * 8 / 3);
+    // (1, 0): its own 8 against its five neighbours' mean 4 / 5.
+    EXPECT_DOUBLE_EQ(rt::judged_noise(noise, 3, 2, 1, 0), std::max(8.0, rt::kNeighbourShare * 4 / 5));
+    // (2, 1): its own 4 against (1, 0), (2, 0), (1, 1): 8 / 3.
+    EXPECT_DOUBLE_EQ(rt::judged_noise(noise, 3, 2, 2, 1), std::max(4.0, rt::kNeighbourShare * 8 / 3));
+    // A region of one pixel: its own.
+    EXPECT_DOUBLE_EQ(rt::judged_noise(noise + 1, 1, 1, 0, 0), 8);
+}
+
 TEST(AdaptiveSampling, HonoursItsCapAndItsTarget) {
+    // Each region replayed pass by pass from the rule: every pixel takes its first
+    // samples (adaptive_first); then, each pass, every pixel under the cap whose judged noise (over the
+    // region as the pass starts) is above the target takes kPacket more, until a pass
+    // adds none. The render's counts are the replay's, and at the end every pixel under
+    // the cap meets the target.
     const rt::Scene s = build(everything());
     const rt::Camera& cam = s.setup.cameras[0];
+    const double target = 2;
+    const int cap = 100;
     for (SamplerKind kind : kAll) {
         rt::SamplingOptions o;
         o.sampler = kind;
-        o.noise_target = 2;
-        o.max_samples = 100;
+        o.noise_target = target;
+        o.max_samples = cap;
         const rt::PixelSampling ps = rt::pixel_sampling(s, 0, o);
-        ASSERT_EQ(ps.max_samples, 100);
+        ASSERT_EQ(ps.max_samples, cap);
+        ASSERT_EQ(ps.first, rt::adaptive_first(8));
         rt::TraceCache cache;
-        int at_cap = 0, early = 0;
-        for (int y = 0; y < cam.height; ++y)
-            for (int x = 0; x < cam.width; ++x) {
-                const rt::PixelValue v = rt::sample_pixel(s, cam, ps, x, y, {}, &cache);
-                ASSERT_GE(v.samples, rt::kAdaptiveFirst);
-                ASSERT_TRUE(v.samples == 100 || (v.samples - rt::kAdaptiveFirst) % rt::kPacket == 0) << v.samples;
-                ASSERT_LE(v.samples, 100);
-                if (v.samples == 100) {
-                    ++at_cap;
-                    continue;
+        int at_cap = 0, early = 0, by_neighbours = 0;
+        for (int y0 = 0; y0 < cam.height; y0 += rt::kAdaptiveRegion)
+            for (int x0 = 0; x0 < cam.width; x0 += rt::kAdaptiveRegion) {
+                const int w = std::min(rt::kAdaptiveRegion, cam.width - x0);
+                const int h = std::min(rt::kAdaptiveRegion, cam.height - y0);
+                std::vector<rt::PixelValue> v(static_cast<size_t>(w * h));
+                rt::sample_region(s, cam, ps, x0, y0, x0 + w, y0 + h, {}, &cache, v.data());
+                // Per-sample noise of every pixel at counts n.
+                const auto noise_of = [&](const std::vector<int>& n) {
+                    std::vector<double> noise;
+                    for (int i = 0; i < w * h; ++i) {
+                        rt::PixelSum acc;
+                        rt::add_samples(s, cam, ps, x0 + i % w, y0 + i / w, 0, n[size_t(i)], {}, &cache, acc);
+                        const double e = acc.standard_error(kind == SamplerKind::Sobol);
+                        noise.push_back(e * e * acc.n);
+                    }
+                    return noise;
+                };
+                std::vector<int> n(static_cast<size_t>(w * h), ps.first);
+                std::vector<double> noise;
+                for (bool more = true; more;) {
+                    noise = noise_of(n);
+                    more = false;
+                    for (int i = 0; i < w * h; ++i)
+                        if (n[size_t(i)] < cap &&
+                            rt::judged_noise(noise.data(), w, h, i % w, i / w) > target * target * n[size_t(i)]) {
+                            n[size_t(i)] = std::min(cap, n[size_t(i)] + rt::kPacket);
+                            more = true;
+                        }
                 }
-                ++early;
-                // Stopped early: its estimate met the target, and one packet fewer did not.
-                rt::PixelSum acc;
-                rt::add_samples(s, cam, ps, x, y, 0, v.samples, {}, &cache, acc);
-                EXPECT_LE(acc.standard_error(), 2);
-                if (v.samples > rt::kAdaptiveFirst) {
-                    rt::PixelSum before;
-                    rt::add_samples(s, cam, ps, x, y, 0, v.samples - rt::kPacket, {}, &cache, before);
-                    EXPECT_GT(before.standard_error(), 2);
+                for (int i = 0; i < w * h; ++i) {
+                    ASSERT_EQ(v[size_t(i)].samples, n[size_t(i)]) << rt::sampler_name(kind) << " pixel " << i;
+                    if (n[size_t(i)] == cap) {
+                        ++at_cap;
+                        continue;
+                    }
+                    ++early;
+                    EXPECT_LE(noise[size_t(i)], target * target * n[size_t(i)]);
+                    if (n[size_t(i)] > ps.first &&
+                        rt::judged_noise(noise.data(), w, h, i % w, i / w) > noise[size_t(i)])
+                        ++by_neighbours;
                 }
             }
-        // The scene has both flat pixels and noisy ones: the test sees both ends.
+        // The scene has both flat pixels and noisy ones: the test sees both ends, and
+        // pixels whose neighbours' noise counted.
         EXPECT_GT(at_cap, 0) << rt::sampler_name(kind);
         EXPECT_GT(early, 0) << rt::sampler_name(kind);
+        EXPECT_GT(by_neighbours, 0) << rt::sampler_name(kind);
     }
 }
 
@@ -283,6 +371,16 @@ TEST(AdaptiveSampling, DeterministicAndCountsEverySample) {
     for (uint32_t n : one.pixel_samples) sum += n;
     EXPECT_EQ(sum, one.samples);
     EXPECT_EQ(one.rays.camera, one.samples);
+    // A pixel alone (--trace) is its region's computation: the render's value and count.
+    const rt::PixelSampling ps = rt::pixel_sampling(s, 0, o.sampling);
+    const rt::Camera& cam = s.setup.cameras[0];
+    rt::TraceCache cache;
+    for (const auto& [x, y] : {std::pair{0, 0}, std::pair{cam.width - 1, cam.height - 1}, std::pair{17, 5}}) {
+        const rt::PixelValue v = rt::sample_pixel_adaptive(s, cam, ps, x, y, {}, &cache);
+        const size_t i = static_cast<size_t>(y) * cam.width + x;
+        EXPECT_EQ(uint32_t(v.samples), one.pixel_samples[i]);
+        EXPECT_EQ(rt::quantize(v.radiance.x, o.rounding), a.rgb[3 * i]);
+    }
     // The default cap: kAdaptiveCapFactor times the scene's 8.
     EXPECT_EQ(*std::max_element(one.pixel_samples.begin(), one.pixel_samples.end()),
               uint32_t(rt::kAdaptiveCapFactor * 8));

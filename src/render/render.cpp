@@ -77,7 +77,23 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
                 rgb[1] = quantize(c.y, options.rounding);
                 rgb[2] = quantize(c.z, options.rounding);
             };
-            if (sampling.samples > 1 || sampling.noise_target > 0) {
+            if (sampling.noise_target > 0) {
+                // Adaptive sampling: the tile's regions, each on its own (pixel_samples.h).
+                static_assert(kTile % kAdaptiveRegion == 0);
+                PixelValue v[kAdaptiveRegion * kAdaptiveRegion];
+                for (int ry = y0; ry < y1; ry += kAdaptiveRegion)
+                    for (int rx = x0; rx < x1; rx += kAdaptiveRegion) {
+                        const int rx1 = std::min(rx + kAdaptiveRegion, x1), ry1 = std::min(ry + kAdaptiveRegion, y1);
+                        sample_region(scene, cam, sampling, rx, ry, rx1, ry1, topt, &cache, v);
+                        for (int y = ry; y < ry1; ++y)
+                            for (int x = rx; x < rx1; ++x) {
+                                const PixelValue& p = v[(y - ry) * (rx1 - rx) + (x - rx)];
+                                put(x, y, p.radiance);
+                                taken += uint64_t(p.samples);
+                                if (counts) counts[static_cast<size_t>(y) * cam.width + x] = uint32_t(p.samples);
+                            }
+                    }
+            } else if (sampling.samples > 1) {
                 // Distribution ray tracing: each pixel's samples (pixel_samples.h).
                 for (int y = y0; y < y1; ++y)
                     for (int x = x0; x < x1; ++x) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "rt/geometry/scene.h"
 #include "rt/geometry/traverse.h"
@@ -25,6 +26,7 @@ PixelSampling pixel_sampling(const Scene& scene, size_t camera, const SamplingOp
     if (options.noise_target > 0 && s.random) {
         s.noise_target = options.noise_target;
         s.max_samples = options.max_samples > 0 ? options.max_samples : kAdaptiveCapFactor * std::max(1, s.samples);
+        s.first = adaptive_first(s.samples);
     }
     const int n = static_cast<int>(std::lround(std::sqrt(double(s.samples))));
     s.grid = s.samples > 1 && n * n == s.samples && s.noise_target <= 0 ? n : 0;
@@ -52,18 +54,49 @@ CameraSample camera_sample(const Camera& cam, const PixelSampling& sampling, int
     return c;
 }
 
-double PixelSum::standard_error() const {
+void PixelSum::add(const Vec3& radiance, bool noise) {
+    sum += radiance;
+    ++n;
+    if (!noise) return;
+    const double v[3] = {clamp_channel(radiance.x), clamp_channel(radiance.y), clamp_channel(radiance.z)};
+    for (int c = 0; c < 3; ++c) {
+        clamped[c] += v[c];
+        squares[c] += v[c] * v[c];
+        block_partial[0][c] += v[c];
+    }
+    // A block of 2 << b ends here when n is a multiple of it: its sum joins the squares of
+    // its level and the partial sum of the next level's block.
+    for (int b = 0; b < kBlocks && (n & ((2 << b) - 1)) == 0; ++b)
+        for (int c = 0; c < 3; ++c) {
+            const double s = block_partial[b][c];
+            block_squares[b][c] += s * s;
+            if (b + 1 < kBlocks) block_partial[b + 1][c] += s;
+            block_partial[b][c] = 0;
+        }
+}
+
+double PixelSum::standard_error(bool sobol) const {
     if (n < 2) return std::numeric_limits<double>::infinity();
+    // The largest block size b with n a multiple of b and n / b >= 4 (sobol), else 1.
+    int level = -1;
+    if (sobol)
+        for (int b = kBlocks - 1; b >= 0 && level < 0; --b)
+            if (n % (2 << b) == 0 && n / (2 << b) >= 4) level = b;
+    const double size = level < 0 ? 1 : double(2 << level);
+    const double m = n / size;  // blocks
     double worst = 0;
     for (int c = 0; c < 3; ++c) {
-        const double variance = std::max(0.0, (squares[c] - clamped[c] * clamped[c] / n) / (n - 1));
-        worst = std::max(worst, variance / n);
+        // The blocks' sums S_j: the variance of their means S_j / size, over m.
+        const double sq = level < 0 ? squares[c] : block_squares[level][c];
+        const double variance = std::max(0.0, (sq - clamped[c] * clamped[c] / m) / (size * size) / (m - 1));
+        worst = std::max(worst, variance / m);
     }
     return std::sqrt(worst);
 }
 
 void add_samples(const Scene& scene, const Camera& cam, const PixelSampling& sampling, int x, int y, int k0, int k1,
                  const TraceOptions& options, TraceCache* cache, PixelSum& acc) {
+    const bool noise = sampling.noise_target > 0;
     for (int k = k0; k < k1; k += kPacket) {
         const int n = std::min(kPacket, k1 - k);
         Ray rays[kPacket];
@@ -75,34 +108,70 @@ void add_samples(const Scene& scene, const Camera& cam, const PixelSampling& sam
         }
         Vec3 radiance[kPacket];
         trace_primaries(scene, rays, n, options, cache, streams, radiance);
-        for (int i = 0; i < n; ++i) {
-            acc.sum += radiance[i];
-            const Real rgb[3] = {radiance[i].x, radiance[i].y, radiance[i].z};
-            for (int c = 0; c < 3; ++c) {
-                const double v = clamp_channel(rgb[c]);
-                acc.clamped[c] += v;
-                acc.squares[c] += v * v;
-            }
-        }
-        acc.n += n;
+        for (int i = 0; i < n; ++i) acc.add(radiance[i], noise);
     }
 }
 
 PixelValue sample_pixel(const Scene& scene, const Camera& cam, const PixelSampling& sampling, int x, int y,
                         const TraceOptions& options, TraceCache* cache) {
     PixelSum acc;
-    if (sampling.noise_target > 0) {
-        // Adaptive: a first few samples, then a packet at a time until the estimate meets
-        // the target.
-        while (acc.n < sampling.max_samples && !(acc.standard_error() <= sampling.noise_target)) {
-            const int batch = acc.n == 0 ? kAdaptiveFirst : kPacket;
-            add_samples(scene, cam, sampling, x, y, acc.n, std::min(sampling.max_samples, acc.n + batch), options,
-                        cache, acc);
-        }
-    } else {
-        add_samples(scene, cam, sampling, x, y, 0, std::max(1, sampling.samples), options, cache, acc);
-    }
+    add_samples(scene, cam, sampling, x, y, 0, std::max(1, sampling.samples), options, cache, acc);
     return {acc.sum / Real(acc.n), acc.n};
+}
+
+double judged_noise(const double* noise, int w, int h, int x, int y) {
+    double around = 0;
+    int count = 0;
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+            const int qx = x + dx, qy = y + dy;
+            if ((dx || dy) && qx >= 0 && qx < w && qy >= 0 && qy < h) {
+                around += noise[qy * w + qx];
+                ++count;
+            }
+        }
+    const double own = noise[y * w + x];
+    return count ? std::max(own, kNeighbourShare * around / count) : own;
+}
+
+void sample_region(const Scene& scene, const Camera& cam, const PixelSampling& sampling, int x0, int y0, int x1, int y1,
+                   const TraceOptions& options, TraceCache* cache, PixelValue* out) {
+    const int w = x1 - x0, h = y1 - y0;
+    const int cap = sampling.max_samples;
+    const bool sobol = sampling.sampler == SamplerKind::Sobol;
+    std::vector<PixelSum> acc(static_cast<size_t>(w * h));
+    std::vector<double> noise(static_cast<size_t>(w * h));  // per sample: the estimate squared x n
+    for (int i = 0; i < w * h; ++i)
+        add_samples(scene, cam, sampling, x0 + i % w, y0 + i / w, 0, std::min(cap, sampling.first), options, cache,
+                    acc[i]);
+    const double target = sampling.noise_target * sampling.noise_target;
+    for (bool more = true; more;) {
+        for (int i = 0; i < w * h; ++i) {
+            const double e = acc[i].standard_error(sobol);
+            noise[i] = e * e * acc[i].n;
+        }
+        more = false;
+        for (int i = 0; i < w * h; ++i) {
+            if (acc[i].n >= cap) continue;
+            const int px = i % w, py = i / w;
+            const double v = judged_noise(noise.data(), w, h, px, py);
+            if (!(v <= target * acc[i].n)) {
+                add_samples(scene, cam, sampling, x0 + px, y0 + py, acc[i].n, std::min(cap, acc[i].n + kPacket),
+                            options, cache, acc[i]);
+                more = true;
+            }
+        }
+    }
+    for (int i = 0; i < w * h; ++i) out[i] = {acc[i].sum / Real(acc[i].n), acc[i].n};
+}
+
+PixelValue sample_pixel_adaptive(const Scene& scene, const Camera& cam, const PixelSampling& sampling, int x, int y,
+                                 const TraceOptions& options, TraceCache* cache) {
+    const int x0 = x / kAdaptiveRegion * kAdaptiveRegion, y0 = y / kAdaptiveRegion * kAdaptiveRegion;
+    const int x1 = std::min(x0 + kAdaptiveRegion, cam.width), y1 = std::min(y0 + kAdaptiveRegion, cam.height);
+    PixelValue out[kAdaptiveRegion * kAdaptiveRegion];
+    sample_region(scene, cam, sampling, x0, y0, x1, y1, options, cache, out);
+    return out[(y - y0) * (x1 - x0) + (x - x0)];
 }
 
 }  // namespace rt

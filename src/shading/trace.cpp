@@ -29,8 +29,8 @@ PixelTrace trace_pixel(const Scene& scene, size_t camera, int x, int y, const Tr
     t.min_weight = options.min_weight;
     // The render's own computation (render.cpp): the sample's camera ray, its radiance
     // (trace_primary, which the render's packets, trace_primaries, equal) and quantize;
-    // with samples, the pixel's mean (sample_pixel). A fresh cache, whose hints never
-    // change a result.
+    // with samples, the pixel's mean (sample_pixel; adaptive sampling: its region's,
+    // sample_region). A fresh cache, whose hints never change a result.
     TraceCache cache;
     const Camera& cam = scene.setup.cameras.at(camera);
     const PixelSampling sampling = pixel_sampling(scene, camera, sampling_options);
@@ -47,7 +47,9 @@ PixelTrace trace_pixel(const Scene& scene, size_t camera, int x, int y, const Tr
     const Vec3 c = trace_primary(scene, cs.ray, options, &cache, &t.root, &cs.stream);
     t.clamped = {clamp_channel(c.x), clamp_channel(c.y), clamp_channel(c.z)};
     if (sampling.samples > 1 || sampling.noise_target > 0) {
-        const PixelValue v = sample_pixel(scene, cam, sampling, x, y, options, &cache);
+        const PixelValue v = sampling.noise_target > 0
+                                 ? sample_pixel_adaptive(scene, cam, sampling, x, y, options, &cache)
+                                 : sample_pixel(scene, cam, sampling, x, y, options, &cache);
         t.mean = v.radiance;
         t.taken = v.samples;
     } else {

@@ -33,14 +33,22 @@ inline const char* sampler_name(SamplerKind kind) {
 struct SamplingOptions {
     uint64_t seed = kDefaultSeed;
     SamplerKind sampler = SamplerKind::Sobol;
-    // > 0: adaptive sampling: a pixel takes kAdaptiveFirst samples, then kPacket at a time,
+    // > 0: adaptive sampling: a pixel takes adaptive_first samples, then kPacket at a time,
     // until the estimated standard error of its mean, in output levels after clamping, is
-    // at most this in every channel, or until max_samples.
+    // at most this in every channel, or until max_samples (sample_region).
     double noise_target = 0;
     int max_samples = 0;  // adaptive: the cap (0: kAdaptiveCapFactor x the camera's samples)
 };
-inline constexpr int kAdaptiveCapFactor = 4;
-inline constexpr int kAdaptiveFirst = 8;  // enough for a first estimate of the variance
+inline constexpr int kAdaptiveCapFactor = 2;
+// Adaptive sampling's first samples of a pixel for a camera of `samples` per pixel: the
+// largest power of two up to samples / 4, from 8 to 32. Enough that a pixel which a
+// feature covers only in part (an edge, a moving shape) rarely stops on samples that all
+// miss it, and a power of two: a Sobol net, its blocks of 2, 4 and 8 complete.
+inline int adaptive_first(int samples) {
+    int first = 8;
+    while (first < 32 && 2 * first <= samples / 4) first *= 2;
+    return first;
+}
 
 // How a camera's pixels are sampled.
 struct PixelSampling {
@@ -54,6 +62,7 @@ struct PixelSampling {
     bool random = false;
     double noise_target = 0;  // > 0: adaptive, up to max_samples (SamplingOptions)
     int max_samples = 0;
+    int first = 0;  // adaptive: the samples every pixel takes first (adaptive_first)
     // The sample count each pixel's pattern is laid out for: samples, or max_samples
     // when adaptive.
     int pattern() const { return noise_target > 0 ? max_samples : samples; }
@@ -79,16 +88,23 @@ struct CameraSample {
 };
 CameraSample camera_sample(const Camera& cam, const PixelSampling& sampling, int x, int y, int k);
 
-// Running sums of a pixel's samples: their radiance (0..255 units, unclamped), and
-// the clamped radiance and its squares for the estimate of the noise (in double whatever
-// Real is: the squares' sum cancels).
+// Running sums of a pixel's samples: their radiance (0..255 units, unclamped), and, for
+// adaptive sampling's estimate of the noise, the clamped radiance, its squares and the
+// squares of its sums over aligned blocks of 2, 4 and 8 samples (in double whatever Real
+// is: the squares' sums cancel).
 struct PixelSum {
+    static constexpr int kBlocks = 3;  // block sizes 2 << i
     Vec3 sum;
     double clamped[3] = {0, 0, 0}, squares[3] = {0, 0, 0};
+    double block_squares[kBlocks][3] = {}, block_partial[kBlocks][3] = {};
     int n = 0;
     // The estimated standard error of the clamped mean, the largest of the channels'
-    // (infinite below two samples).
-    double standard_error() const;
+    // (infinite below two samples). `sobol`: the samples are Sobol points, whose aligned
+    // blocks are nets: the spread of the means of the largest aligned blocks of which there
+    // are at least 4 (their error, not that of independent samples, which overstates a
+    // net's), else of the samples.
+    double standard_error(bool sobol) const;
+    void add(const Vec3& radiance, bool noise);
 };
 
 // Adds samples [k0, k1) of pixel (x, y) to `acc`, in order, traced kPacket at a time
@@ -104,7 +120,29 @@ struct PixelValue {
     Vec3 radiance;
     int samples = 0;
 };
+// A pixel of a camera without adaptive sampling.
 PixelValue sample_pixel(const Scene& scene, const Camera& cam, const PixelSampling& sampling, int x, int y,
                         const TraceOptions& options, TraceCache* cache);
+
+// Adaptive sampling (sampling.noise_target > 0) decides a pixel's samples within its
+// region: the kAdaptiveRegion x kAdaptiveRegion square of the image, aligned at 0 and cut at
+// its edges, that holds it. Every pixel takes sampling.first samples, then, pass after pass,
+// kPacket more while its noise estimate is above the target and it is under the cap. A
+// pixel's estimate is its own (PixelSum::standard_error) or, if larger, what its
+// neighbours' per-sample noise (in the region, 3 x 3) predicts for its own count: a pixel
+// whose first samples happen to agree beside noisy ones is not taken as converged. A region
+// depends on nothing outside it, so the image is the same for any thread count and tiling.
+inline constexpr int kAdaptiveRegion = 16;
+inline constexpr double kNeighbourShare = 0.5;
+// The per-sample noise pixel (x, y) of a w x h region is judged by: the largest of its own
+// (noise[y * w + x], its estimate squared times its count) and kNeighbourShare times the
+// mean of its neighbours' in the region.
+double judged_noise(const double* noise, int w, int h, int x, int y);
+// The pixels of region [x0, x1) x [y0, y1) into out (row-major, (x1 - x0) * (y1 - y0)).
+void sample_region(const Scene& scene, const Camera& cam, const PixelSampling& sampling, int x0, int y0, int x1, int y1,
+                   const TraceOptions& options, TraceCache* cache, PixelValue* out);
+// Pixel (x, y) under adaptive sampling: its region's computation, this pixel's value.
+PixelValue sample_pixel_adaptive(const Scene& scene, const Camera& cam, const PixelSampling& sampling, int x, int y,
+                                 const TraceOptions& options, TraceCache* cache);
 
 }  // namespace rt
