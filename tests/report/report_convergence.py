@@ -34,7 +34,7 @@ SPP = [1, 4, 16, 64, 256]
 SAMPLERS = ["random", "stratified", "sobol"]
 # Adaptive sampling: noise targets tried from the loosest down, until the error is no more
 # than the default sampler's at the scene's count.
-TARGETS = [16, 12, 8, 6, 4, 3, 2, 1.5, 1, 0.75, 0.5]
+TARGETS = [16, 12, 8, 6, 4, 3, 2, 1.5, 1, 0.75, 0.5, 0.35, 0.25, 0.18, 0.12, 0.08]
 CONVERGED_SEED = 1000003
 
 
@@ -118,10 +118,10 @@ class Study:
         for n in counts:
             r = self.measured(scene, f"spp{n}", ["--samples", str(n)], conv)
             res["spp"].append(dict(r, n=n))
-        base = next(r for r in res["spp"] if r["n"] == scene.samples)
-        res["samplers"]["random"] = base
-        for s in SAMPLERS[1:]:
-            res["samplers"][s] = self.measured(scene, f"{s}{scene.samples}", ["--sampler", s], conv)
+        base = next(r for r in res["spp"] if r["n"] == scene.samples)  # the default sampler, sobol
+        for s in SAMPLERS:
+            res["samplers"][s] = base if s == "sobol" else self.measured(scene, f"{s}{scene.samples}",
+                                                                        ["--sampler", s], conv)
         res["adaptive"] = self.adaptive(scene, conv, base)
         res["features"] = self.features(scene, base)
         return res
