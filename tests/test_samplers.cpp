@@ -262,13 +262,15 @@ TEST(AdaptiveSampling, EstimatesFromSamplesOrFromBlocksOfSobolPoints) {
     EXPECT_EQ(plain.squares[0], 0);
 }
 
-TEST(AdaptiveSampling, FirstSamplesAPowerOfTwoFrom8To32UpToAQuarterOfTheCount) {
-    EXPECT_EQ(rt::adaptive_first(0), 8);
-    EXPECT_EQ(rt::adaptive_first(36), 8);
-    EXPECT_EQ(rt::adaptive_first(63), 8);
-    EXPECT_EQ(rt::adaptive_first(64), 16);
+TEST(AdaptiveSampling, FirstSamplesAPowerOfTwoFrom4To32UpToASixthOfTheCount) {
+    EXPECT_EQ(rt::adaptive_first(0), 4);
+    EXPECT_EQ(rt::adaptive_first(36), 4);
+    EXPECT_EQ(rt::adaptive_first(47), 4);
+    EXPECT_EQ(rt::adaptive_first(48), 8);
+    EXPECT_EQ(rt::adaptive_first(95), 8);
+    EXPECT_EQ(rt::adaptive_first(96), 16);
     EXPECT_EQ(rt::adaptive_first(100), 16);
-    EXPECT_EQ(rt::adaptive_first(128), 32);
+    EXPECT_EQ(rt::adaptive_first(192), 32);
     EXPECT_EQ(rt::adaptive_first(900), 32);
 }
 

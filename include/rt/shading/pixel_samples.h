@@ -41,12 +41,13 @@ struct SamplingOptions {
 };
 inline constexpr int kAdaptiveCapFactor = 2;
 // Adaptive sampling's first samples of a pixel for a camera of `samples` per pixel: the
-// largest power of two up to samples / 4, from 8 to 32. Enough that a pixel which a
-// feature covers only in part (an edge, a moving shape) rarely stops on samples that all
-// miss it, and a power of two: a Sobol net, its blocks of 2, 4 and 8 complete.
+// largest power of two up to samples / 6, from 4 to 32. Every pixel spends them, so they are
+// a small part of the uniform budget; enough that a pixel which a feature covers only in part
+// (an edge, a moving shape) rarely stops on samples that all miss it; and a power of two: a
+// Sobol net, its blocks of 2, 4 and 8 complete.
 inline int adaptive_first(int samples) {
-    int first = 8;
-    while (first < 32 && 2 * first <= samples / 4) first *= 2;
+    int first = 4;
+    while (first < 32 && 2 * first <= samples / 6) first *= 2;
     return first;
 }
 
