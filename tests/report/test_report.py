@@ -49,6 +49,21 @@ class FeatureSwitches(unittest.TestCase):
         self.assertTrue(root.tag.endswith("svg"))
 
 
+class MonteCarloFigures(unittest.TestCase):
+    def test_rmse_from_the_psnr_not_its_two_decimals(self):
+        # 69.52 dB: 255 / 10^3.476 = 0.08522, printed as 0.09.
+        r = report_convergence.parse_mc_line(
+            "vs reference        0.2500      +0.00  +0.01  -0.02  -0.01      0.09   69.52 dB")
+        self.assertAlmostEqual(r["rmse"], 0.08522, places=5)
+        self.assertEqual(r["blocks"], 0.25)
+        self.assertEqual(r["mean"], -0.01)
+        # 40.00 dB: 2.55 exactly; identical images: infinite PSNR, no error.
+        self.assertAlmostEqual(report_convergence.parse_mc_line(
+            "vs reference        0.0000      +0.00  +0.00  +0.00  +0.00      2.55   40.00 dB")["rmse"], 2.55, places=9)
+        self.assertEqual(report_convergence.parse_mc_line(
+            "vs reference        0.0000      +0.00  +0.00  +0.00  +0.00      0.00   inf")["rmse"], 0.0)
+
+
 class RatioText(unittest.TestCase):
     def test_apart_spreads_give_a_plain_ratio(self):
         off = report_timing.Timing(2.0, 1.9, 2.1, 3)
