@@ -77,6 +77,12 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
                 rgb[1] = quantize(c.y, options.rounding);
                 rgb[2] = quantize(c.z, options.rounding);
             };
+            // A pixel with samples: its bytes, its count.
+            const auto keep = [&](int px, int py, const PixelValue& v) {
+                put(px, py, v.radiance);
+                taken += uint64_t(v.samples);
+                if (counts) counts[static_cast<size_t>(py) * cam.width + px] = uint32_t(v.samples);
+            };
             if (sampling.noise_target > 0) {
                 // Adaptive sampling: the tile's regions, each on its own (pixel_samples.h).
                 static_assert(kTile % kAdaptiveRegion == 0);
@@ -86,22 +92,12 @@ Image render(const Scene& scene, size_t camera_index, const RenderOptions& optio
                         const int rx1 = std::min(rx + kAdaptiveRegion, x1), ry1 = std::min(ry + kAdaptiveRegion, y1);
                         sample_region(scene, cam, sampling, rx, ry, rx1, ry1, topt, &cache, v);
                         for (int y = ry; y < ry1; ++y)
-                            for (int x = rx; x < rx1; ++x) {
-                                const PixelValue& p = v[(y - ry) * (rx1 - rx) + (x - rx)];
-                                put(x, y, p.radiance);
-                                taken += uint64_t(p.samples);
-                                if (counts) counts[static_cast<size_t>(y) * cam.width + x] = uint32_t(p.samples);
-                            }
+                            for (int x = rx; x < rx1; ++x) keep(x, y, v[(y - ry) * (rx1 - rx) + (x - rx)]);
                     }
             } else if (sampling.samples > 1) {
                 // Distribution ray tracing: each pixel's samples (pixel_samples.h).
                 for (int y = y0; y < y1; ++y)
-                    for (int x = x0; x < x1; ++x) {
-                        const PixelValue v = sample_pixel(scene, cam, sampling, x, y, topt, &cache);
-                        put(x, y, v.radiance);
-                        taken += uint64_t(v.samples);
-                        if (counts) counts[static_cast<size_t>(y) * cam.width + x] = uint32_t(v.samples);
-                    }
+                    for (int x = x0; x < x1; ++x) keep(x, y, sample_pixel(scene, cam, sampling, x, y, topt, &cache));
             } else
                 for (int y = y0; y < y1; y += kPacketH)
                     for (int x = x0; x < x1; x += kPacketW) {
