@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <set>
 #include <utility>
 #include <vector>
@@ -107,6 +108,101 @@ TEST(SamplePatterns, SobolPrefixesAreNetsInEveryPairAndPixel) {
     EXPECT_NE(points(SamplerKind::Sobol, 3, 16, 0), points(SamplerKind::Sobol, 3, 16, 1));
 }
 
+// How many of the points `p` (each `dims` 32-bit fractions) fall in each box of the
+// elementary shape that halves coordinate d bits[d] times.
+std::vector<int> box_counts(const std::vector<std::vector<uint32_t>>& p, const std::vector<int>& bits) {
+    int total = 0;
+    for (int b : bits) total += b;
+    std::vector<int> count(size_t(1) << total, 0);
+    for (const auto& q : p) {
+        size_t box = 0;
+        for (size_t d = 0; d < bits.size(); ++d)
+            if (bits[d] > 0) box = box << bits[d] | q[d] >> (32 - bits[d]);
+        ++count[box];
+    }
+    return count;
+}
+
+// Every split of k bits among `dims` coordinates.
+void each_shape(int dims, int k, std::vector<int>& bits, const std::function<void()>& f) {
+    if (int(bits.size()) == dims - 1) {
+        bits.push_back(k);
+        f();
+        bits.pop_back();
+        return;
+    }
+    for (int b = 0; b <= k; ++b) {
+        bits.push_back(b);
+        each_shape(dims, k - b, bits, f);
+        bits.pop_back();
+    }
+}
+
+TEST(SamplePatterns, SobolHigherDimensionsFollowTheirRecurrences) {
+    // By hand from the initial direction numbers (dimension 2: 1/2, 3/4; 3: 1/2, 3/4, 1/8;
+    // 4: 1/2, 1/4, 1/8): point i is the XOR of those of i's set bits.
+    const double want[3][5] = {{0, 0.5, 0.75, 0.25, 0.375}, {0, 0.5, 0.75, 0.25, 0.125}, {0, 0.5, 0.25, 0.75, 0.125}};
+    for (int d = 2; d <= 4; ++d)
+        for (uint32_t i = 0; i < 5; ++i) EXPECT_EQ(rt::sobol_higher(d, i) * 0x1p-32, want[d - 2][i]) << d << " " << i;
+    // The first 2^k points of dimensions 0, 1 and 2 are a (1, k, 3)-net: two in every
+    // elementary box of volume 2^(1-k), whatever its shape; each dimension alone one per
+    // interval of 1/2^k.
+    for (int k : {4, 6, 8}) {
+        std::vector<std::vector<uint32_t>> p;
+        for (uint32_t i = 0; i < (1u << k); ++i) {
+            uint32_t a, b;
+            rt::sobol2(i, a, b);
+            p.push_back({a, b, rt::sobol_higher(2, i), rt::sobol_higher(3, i), rt::sobol_higher(4, i)});
+        }
+        std::vector<int> bits;
+        std::vector<std::vector<uint32_t>> first3;
+        for (const auto& q : p) first3.push_back({q[0], q[1], q[2]});
+        each_shape(3, k - 1, bits, [&] {
+            for (int c : box_counts(first3, bits)) EXPECT_EQ(c, 2) << k;
+        });
+        for (int d = 2; d <= 4; ++d) {
+            std::vector<int> one(5, 0);
+            one[size_t(d)] = k;
+            for (int c : box_counts(p, one)) EXPECT_EQ(c, 1) << k << " " << d;
+        }
+    }
+}
+
+TEST(SamplePatterns, SobolCameraPointsAreStratifiedTogether) {
+    // A pixel's first 2^k camera points (pixel, lens, time) under sobol: the pixel pair is
+    // the pair next2 draws; pixel and time together a (1, k, 3)-net, as scrambling and
+    // shuffling keep nets; every coordinate one per interval of 1/2^k.
+    for (uint64_t pixel : {0u, 77u, 12345u})
+        for (int k : {4, 7}) {
+            std::vector<std::vector<uint32_t>> pixel_time, all;
+            for (uint32_t i = 0; i < (1u << k); ++i) {
+                rt::SampleStream s(SamplerKind::Sobol, 9, pixel, i, 1u << k), t = s;
+                Real u[5], a, b;
+                s.sobol_point(u, 5);
+                t.next2(a, b);
+                EXPECT_EQ(u[0], a);
+                EXPECT_EQ(u[1], b);
+                std::vector<uint32_t> q;
+                for (Real v : u) q.push_back(uint32_t(double(v) * 0x1p32));
+                all.push_back(q);
+                // Time is the third number when the camera has no lens.
+                rt::SampleStream r(SamplerKind::Sobol, 9, pixel, i, 1u << k);
+                r.sobol_point(u, 3);
+                pixel_time.push_back({uint32_t(double(u[0]) * 0x1p32), uint32_t(double(u[1]) * 0x1p32),
+                                      uint32_t(double(u[2]) * 0x1p32)});
+            }
+            std::vector<int> bits;
+            each_shape(3, k - 1, bits, [&] {
+                for (int c : box_counts(pixel_time, bits)) EXPECT_EQ(c, 2) << pixel << " " << k;
+            });
+            for (int d = 0; d < 5; ++d) {
+                std::vector<int> one(5, 0);
+                one[size_t(d)] = k;
+                for (int c : box_counts(all, one)) EXPECT_EQ(c, 1) << pixel << " " << k << " " << d;
+            }
+        }
+}
+
 TEST(SamplePatterns, StratifiedIsOnePerCellAndPerRowAndColumnOfTheFineGrid) {
     for (int n : {16, 36, 100})
         for (int pair : {0, 2}) {
@@ -167,29 +263,32 @@ std::vector<double> pixel_means(const rt::Scene& s, const rt::SamplingOptions& o
 }
 
 TEST(Samplers, PatternsMeansAgreeWithRandomsWithinNoise) {
-    json j = everything();
-    j["Scene"]["Cameras"]["Camera"]["NumSamples"] = "16";
-    const rt::Scene s = build(j);
-    rt::SamplingOptions o;
-    o.sampler = SamplerKind::Random;
-    const std::vector<double> base = pixel_means(s, o);
-    for (SamplerKind kind : kPatterned) {
-        o.sampler = kind;
-        const std::vector<double> other = pixel_means(s, o);
-        ASSERT_EQ(other.size(), base.size());
-        // The mean over the image of the pixels' differences, against its standard error
-        // (pixels' noise is independent).
-        double sum = 0, squares = 0;
-        for (size_t i = 0; i < base.size(); ++i) {
-            const double d = other[i] - base[i];
-            sum += d;
-            squares += d * d;
+    // 16: the pixel grid; 12: none, Sobol's camera numbers one joint point.
+    for (const char* count : {"16", "12"}) {
+        json j = everything();
+        j["Scene"]["Cameras"]["Camera"]["NumSamples"] = count;
+        const rt::Scene s = build(j);
+        rt::SamplingOptions o;
+        o.sampler = SamplerKind::Random;
+        const std::vector<double> base = pixel_means(s, o);
+        for (SamplerKind kind : kPatterned) {
+            o.sampler = kind;
+            const std::vector<double> other = pixel_means(s, o);
+            ASSERT_EQ(other.size(), base.size());
+            // The mean over the image of the pixels' differences, against its standard error
+            // (pixels' noise is independent).
+            double sum = 0, squares = 0;
+            for (size_t i = 0; i < base.size(); ++i) {
+                const double d = other[i] - base[i];
+                sum += d;
+                squares += d * d;
+            }
+            const double n = double(base.size()), mean = sum / n;
+            const double se = std::sqrt((squares / n - mean * mean) / (n - 1));
+            EXPECT_GT(se, 0) << "the samplers gave the same image: the test shows nothing";
+            EXPECT_LT(std::abs(mean), 4 * se + 1e-9) << rt::sampler_name(kind) << ": mean " << mean << ", se " << se;
+            EXPECT_NE(other, base) << rt::sampler_name(kind);
         }
-        const double n = double(base.size()), mean = sum / n;
-        const double se = std::sqrt((squares / n - mean * mean) / (n - 1));
-        EXPECT_GT(se, 0) << "the samplers gave the same image: the test shows nothing";
-        EXPECT_LT(std::abs(mean), 4 * se + 1e-9) << rt::sampler_name(kind) << ": mean " << mean << ", se " << se;
-        EXPECT_NE(other, base) << rt::sampler_name(kind);
     }
 }
 

@@ -97,6 +97,22 @@ struct SampleStream {
         stratified(h, a, b);
     }
 
+    // Sobol: `dims` numbers (1..5) of one point of Sobol's first `dims` dimensions, the
+    // pixel's sample index shuffled and each coordinate scrambled as a pair's are, so that
+    // they are stratified together and not only pair by pair. The first two are the pair
+    // next2 would draw.
+    void sobol_point(Real* out, int dims) {
+        const uint64_t h = mix64(key ^ (0xd1b54a32d192ed03ULL * ++drawn));
+        const uint32_t h0 = uint32_t(h), h1 = uint32_t(h >> 32);
+        uint32_t x, y;
+        scrambled_sobol2(index, h0, h1, h1 ^ h0 ^ 0x5bd1e995u, x, y);
+        out[0] = unit32(x);
+        if (dims > 1) out[1] = unit32(y);
+        const uint32_t shuffled = dims > 2 ? nested_scramble(index, h0) : 0;
+        for (int d = 2; d < dims; ++d)
+            out[d] = unit32(nested_scramble(sobol_higher(d, shuffled), uint32_t(mix64(h + uint64_t(d)))));
+    }
+
 private:
     static Real unit32(uint32_t v) { return unit_from_bits(uint64_t(v) << 32); }
 

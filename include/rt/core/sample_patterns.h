@@ -81,6 +81,38 @@ inline void scrambled_sobol2(uint32_t i, uint32_t shuffle, uint32_t sa, uint32_t
     b = reverse_bits(owen_reversed(sobol1_reversed(shuffled), sb));
 }
 
+// Dimensions 2, 3 and 4 of Sobol's sequence (Joe and Kuo's dimensions 3, 4 and 5: the
+// primitive polynomials x^2 + x + 1, x^3 + x + 1 and x^3 + x^2 + 1, initial direction
+// numbers 1 3, 1 3 1 and 1 1 1), their direction numbers as 32-bit fractions from the
+// recurrence v_k = v_k-s ^ v_k-s >> s ^ the v_k-j the polynomial's inner terms select.
+struct SobolHigherDirections {
+    uint32_t v[3][32];
+    constexpr SobolHigherDirections() : v{} {
+        const int degree[3] = {2, 3, 3}, inner[3] = {1, 1, 2};
+        const uint32_t initial[3][3] = {{1, 3, 0}, {1, 3, 1}, {1, 1, 1}};
+        for (int d = 0; d < 3; ++d) {
+            const int s = degree[d];
+            for (int k = 0; k < s; ++k) v[d][k] = initial[d][k] << (31 - k);
+            for (int k = s; k < 32; ++k) {
+                uint32_t r = v[d][k - s] ^ (v[d][k - s] >> s);
+                for (int j = 1; j < s; ++j)
+                    if (inner[d] >> (s - 1 - j) & 1) r ^= v[d][k - j];
+                v[d][k] = r;
+            }
+        }
+    }
+};
+inline constexpr SobolHigherDirections kSobolHigher{};
+
+// Point `i` of Sobol's dimension `d` (2..4) as a 32-bit fraction: the XOR of the direction
+// numbers of i's set bits. The first 2^k points of dimensions 0, 1 and 2 together are a
+// (1, k, 3)-net: every elementary box of volume 2^(1-k) holds two.
+inline uint32_t sobol_higher(int d, uint32_t i) {
+    uint32_t r = 0;
+    for (; i; i &= i - 1) r ^= kSobolHigher.v[d - 2][__builtin_ctz(i)];
+    return r;
+}
+
 // A bijection of [0, n) keyed by `seed` (n <= 2^31): a bijection of the next power of two
 // (invertible mixing steps masked to its bits), walked until it lands inside [0, n).
 inline uint32_t permute_index(uint32_t i, uint32_t n, uint32_t seed) {
