@@ -43,10 +43,15 @@ def run(cmd, **kw):
 
 
 def render(scene, out, options=()):
-    """./raytracer's images of `scene` in `out` (with `options`): {image file name: path}."""
+    """./raytracer's images of `scene` in `out` (with `options`): {image file name: path}, PNG
+    or PPM as the scene names them (xml2021's cornellbox, mirror_spheres and
+    simple_reflectance write PPM); an error when there is none."""
     os.makedirs(out, exist_ok=True)
     run([RAYTRACER, "-q"] + list(options) + ["-o", out, scene])
-    return {n: os.path.join(out, n) for n in sorted(os.listdir(out)) if n.endswith(".png")}
+    images = {n: os.path.join(out, n) for n in sorted(os.listdir(out)) if n.endswith((".png", ".ppm"))}
+    if not images:
+        raise RuntimeError("%s: ./raytracer wrote no image in %s" % (scene, out))
+    return images
 
 
 def difference(a, b):

@@ -30,6 +30,8 @@ inline uint64_t mix64(uint64_t z) {
 //   Sobol:      each pair of dimensions the first two dimensions of Sobol's sequence,
 //               Owen-scrambled and shuffled anew per pixel and per pair; any prefix of a
 //               pixel's samples is well spread, so adaptive sampling may stop anywhere.
+//               Without the pixel grid the camera's numbers are one point of several
+//               dimensions (sobol_point, camera_sample).
 // Every sample is uniform on its own (the patterns are randomised by the seed), so each
 // sampler's pixel mean has the same expectation.
 enum class SamplerKind : uint8_t { Random, Stratified, Sobol };

@@ -71,16 +71,17 @@ struct PixelSampling {
 
 // The sampling of camera `camera` of `scene` (its NumSamples, or --samples, already in
 // Camera::samples: apply_overrides). Adaptive sampling applies only where a number is
-// drawn (random); Random's grid only to a fixed count (a grid stopped part way would
+// drawn (random); the pixel grid only to a fixed count (a grid stopped part way would
 // cover the top of the pixel only).
 PixelSampling pixel_sampling(const Scene& scene, size_t camera, const SamplingOptions& options);
 
 // Sample k (0 <= k < max(1, samples)) of pixel (x, y): its camera ray, and the stream its
 // path draws from after the camera's numbers. Its point in the pixel: the centre for one
 // sample or none (assignment 1's bunny.json writes NumSamples 1: its reference is of
-// centre rays); under the Random sampler stratified on an n x n grid when samples is a
-// square n^2 > 1 (sample k in cell (k % n, k / n)), uniform otherwise, its lens point and
-// time uniform; under the others from the sampler's pattern.
+// centre rays); stratified on an n x n grid when samples is a square n^2 > 1 and fixed
+// (sample k in cell (k % n, k / n)), uniform otherwise, its lens point and time uniform,
+// all drawn from the sampler; under Sobol without the grid the pixel point, lens point
+// and time are one point of Sobol's first dimensions (SampleStream::sobol_point).
 struct CameraSample {
     Ray ray;
     SampleStream stream;
