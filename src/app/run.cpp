@@ -223,9 +223,17 @@ ImageRecord render_camera(const std::string& scene_path, const LoadedScene& s, s
     ropt.count_samples = !o.sample_map.empty();
     app::ProgressLine progress(o.progress && !o.quiet && app::stderr_is_terminal());
     if (progress.enabled()) ropt.progress = [&progress](int done, int total) { progress.update(done, total); };
-    ImageRecord r{scene_path, out, c + 1, cam.width, cam.height,          s.figures,
-                  o.repeat,   {},  {},    {},        o.render.trace.cull, o.render.trace.min_weight,
-                  o.bvh,      0};
+    ImageRecord r;
+    r.scene = scene_path;
+    r.image = out;
+    r.camera = c + 1;
+    r.width = cam.width;
+    r.height = cam.height;
+    r.figures = s.figures;
+    r.repeat = o.repeat;
+    r.cull = o.render.trace.cull;
+    r.min_weight = o.render.trace.min_weight;
+    r.bvh = o.bvh;
     std::vector<double> renders;
     Image img;
     for (int run = 0; run < o.repeat; ++run) {
