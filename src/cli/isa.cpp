@@ -7,8 +7,20 @@ namespace rtcli {
 bool cpu_runs(const std::string& isa) {
 #if defined(__x86_64__) || defined(__i386__)
     __builtin_cpu_init();
+#if defined(__clang__)
+    // clang (the fuzz and sanitizer builds) does not know the level names: their features.
+    const bool v3 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi") &&
+                    __builtin_cpu_supports("bmi2") && __builtin_cpu_supports("popcnt") &&
+                    __builtin_cpu_supports("sse4.2");
+    if (isa == "avx2") return v3;
+    if (isa == "avx512")
+        return v3 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
+               __builtin_cpu_supports("avx512cd") && __builtin_cpu_supports("avx512dq") &&
+               __builtin_cpu_supports("avx512vl");
+#else
     if (isa == "avx2") return __builtin_cpu_supports("x86-64-v3");
     if (isa == "avx512") return __builtin_cpu_supports("x86-64-v4");
+#endif
 #else
     if (isa == "avx2" || isa == "avx512") return false;
 #endif
