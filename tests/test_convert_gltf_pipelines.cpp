@@ -136,6 +136,55 @@ TEST(GltfQuantized, EveryComponentTypeDequantisedUnderItsNodesTransform) {
     }
 }
 
+TEST(GltfQuantized, AQuantisedPlaneIsStillThePlane) {
+    // An exported plane (a quad, its extras the plane) as quantize writes it: positions in
+    // [-1, 1] that no longer pass through the extras' point, the node moving and scaling them
+    // back. It comes back as the plane, not as the finite quad.
+    TempDir tmp;
+    GltfFile f;
+    const int16_t q[] = {-32767, 0, -32767, 0, 32767, 0, -32767, 0, 32767, 0, 32767, 0, -32767, 0, 32767, 0};
+    const int view = f.view(q, sizeof q);
+    f.j["bufferViews"][size_t(view)]["byteStride"] = 8;
+    f.j["accessors"].push_back({{"bufferView", view},
+                                {"componentType", 5122},
+                                {"normalized", true},
+                                {"count", 4},
+                                {"type", "VEC3"},
+                                {"min", {-1, 0, -1}},
+                                {"max", {1, 0, 1}}});
+    f.j["accessors"].push_back({{"bufferView", f.view(std::vector<uint32_t>{0, 2, 1, 0, 3, 2}.data(), 24)},
+                                {"componentType", 5125},
+                                {"count", 6},
+                                {"type", "SCALAR"}});
+    const json plane = {{"ceng795", {{"plane", {{"point", {0, -0.5, 0}}, {"normal", {0, 1, 0}}}}}}};
+    f.j["meshes"].push_back({{"primitives", {{{"attributes", {{"POSITION", 0}}}, {"indices", 1}}}}, {"extras", plane}});
+    f.j["extensionsUsed"] = f.j["extensionsRequired"] = {"KHR_mesh_quantization"};
+    f.node({{"mesh", 0}, {"translation", {-0.0875, -0.5, -1.15}}, {"scale", {18.2, 18.2, 18.2}}});
+    const Imported im = import(tmp, f.write(tmp));
+    EXPECT_TRUE(world_triangles(im.scene).empty());
+    const auto planes = im.scene.all<rt::PlaneDesc>();
+    ASSERT_EQ(planes.size(), 1u);
+    // In the world (the loader applies its node's transformation): through y = -0.5,
+    // facing +y.
+    EXPECT_NEAR(double(planes[0].point.y), -0.5, 1e-6);
+    EXPECT_NEAR(double(rt::normalize(planes[0].normal).y), 1, 1e-9);
+    // Off the plane by more than the 14 bits quantize keeps: the quad it is.
+    int16_t bent[16];
+    std::memcpy(bent, q, sizeof q);
+    bent[1] = 200;  // the first corner's y: 0.006 of the half extent
+    GltfFile g = f;
+    g.bin.clear();
+    g.j["bufferViews"] = json::array();
+    g.view(bent, sizeof bent);
+    g.j["bufferViews"][0]["byteStride"] = 8;
+    g.view(std::vector<uint32_t>{0, 2, 1, 0, 3, 2}.data(), 24);
+    g.j["accessors"][0]["max"][1] = 200.0 / 32767;
+    TempDir tmp2;
+    const Imported quad = import(tmp2, g.write(tmp2));
+    EXPECT_TRUE(quad.scene.all<rt::PlaneDesc>().empty());
+    EXPECT_EQ(world_triangles(quad.scene).size(), 2u);
+}
+
 TEST(GltfQuantized, ANonNumericComponentTypeIsRefusedNamingTheAccessor) {
     TempDir tmp;
     GltfFile f;

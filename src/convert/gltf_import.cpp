@@ -352,6 +352,20 @@ private:
         return true;
     }
 
+    // Whether every vertex of `g` is within `tolerance` x its distance from p (at least 1)
+    // of the plane through p of normal `nrm`.
+    static bool on_plane(const GltfTriangles& g, const V3& p, const V3& nrm, double tolerance) {
+        const double len = norm(nrm);
+        double size = 1;
+        for (size_t i = 0; i < g.positions.size(); i += 3)
+            size = std::max(size, norm(sub({g.positions[i], g.positions[i + 1], g.positions[i + 2]}, p)));
+        for (size_t i = 0; i < g.positions.size(); i += 3) {
+            const V3 d = sub({g.positions[i], g.positions[i + 1], g.positions[i + 2]}, p);
+            if (std::fabs(d[0] * nrm[0] + d[1] * nrm[1] + d[2] * nrm[2]) / len > tolerance * size) return false;
+        }
+        return true;
+    }
+
     // A tessellated sphere or plane of the export, back as itself while its vertices are
     // still on it (docs/gltf.md).
     bool as_shape(const GltfTriangles& g, const json& extras, const Affine& world, const std::vector<int>& nodes,
@@ -392,14 +406,14 @@ private:
                 return false;
             const double len = norm(nrm);
             if (!(len > 0)) return false;
-            double size = 0;
-            for (size_t i = 0; i < n; ++i)
-                size =
-                    std::max(size, norm(sub({g.positions[3 * i], g.positions[3 * i + 1], g.positions[3 * i + 2]}, p)));
-            for (size_t i = 0; i < n; ++i) {
-                const V3 d = sub({g.positions[3 * i], g.positions[3 * i + 1], g.positions[3 * i + 2]}, p);
-                if (std::fabs(d[0] * nrm[0] + d[1] * nrm[1] + d[2] * nrm[2]) / len > 1e-5 * std::max(size, 1.0))
-                    return false;
+            if (!on_plane(g, p, nrm, 1e-5)) {
+                // Quantised, its positions are the plane's moved and scaled uniformly, the
+                // node undoing it (as a sphere's): the plane of the extras' normal through
+                // their centroid, while they lie on it to within the 14 bits kept.
+                p = {0, 0, 0};
+                for (size_t i = 0; i < n; ++i)
+                    for (size_t k = 0; k < 3; ++k) p[k] += g.positions[3 * i + k] / double(n);
+                if (!on_plane(g, p, nrm, 2e-4)) return false;
             }
             ojson o = ojson::object();
             o["_id"] = std::to_string(plane_objects_.size() + 1);
