@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -183,6 +184,52 @@ TEST(GltfQuantized, AQuantisedPlaneIsStillThePlane) {
     const Imported quad = import(tmp2, g.write(tmp2));
     EXPECT_TRUE(quad.scene.all<rt::PlaneDesc>().empty());
     EXPECT_EQ(world_triangles(quad.scene).size(), 2u);
+}
+
+TEST(GltfJoined, SpheresJoinedIntoOneMeshAreSpheresAgain) {
+    // optimize's join merges exported spheres of one material into one mesh, keeping the
+    // extras of one: each part that shares no vertex with the rest and lies on a sphere is
+    // that sphere. Here two icosahedra (their 12 corners on the sphere) of radius 1 and 2.
+    const double t = (1 + std::sqrt(5.0)) / 2, s = 1 / std::sqrt(1 + t * t);
+    const double ico[12][3] = {{-1, t, 0},  {1, t, 0},  {-1, -t, 0}, {1, -t, 0}, {0, -1, t},  {0, 1, t},
+                               {0, -1, -t}, {0, 1, -t}, {t, 0, -1},  {t, 0, 1},  {-t, 0, -1}, {-t, 0, 1}};
+    const uint32_t faces[] = {0, 11, 5,  0, 5,  1, 0, 1, 7, 0, 7,  10, 0, 10, 11, 1, 5, 9, 5, 11,
+                              4, 11, 10, 2, 10, 7, 6, 7, 1, 8, 3,  9,  4, 3,  4,  2, 3, 2, 6, 3,
+                              6, 8,  3,  8, 9,  4, 9, 5, 2, 4, 11, 6,  2, 10, 8,  6, 7, 9, 8, 1};
+    auto joined = [&](double push) {
+        std::vector<float> p;
+        std::vector<uint32_t> idx;
+        const double centre[2][3] = {{0, 0, 0}, {5, 1, 0}}, radius[2] = {1, 2};
+        for (int k = 0; k < 2; ++k) {
+            for (int v = 0; v < 12; ++v)
+                for (int a = 0; a < 3; ++a)
+                    p.push_back(float(centre[k][a] + radius[k] * s * ico[v][a] * (k == 1 && v == 3 ? 1 + push : 1)));
+            for (uint32_t f : faces) idx.push_back(uint32_t(12 * k) + f);
+        }
+        GltfFile f;
+        f.mesh(p, idx);
+        f.j["meshes"][0]["extras"] = {{"ceng795", {{"sphere", {{"center", {0, 0, 0}}, {"radius", 1}}}}}};
+        f.node({{"mesh", 0}, {"translation", {0, 0, -3}}});
+        return f;
+    };
+    TempDir tmp;
+    const Imported im = import(tmp, joined(0).write(tmp));
+    EXPECT_TRUE(world_triangles(im.scene).empty());
+    const auto spheres = im.scene.all<rt::SphereDesc>();
+    ASSERT_EQ(spheres.size(), 2u);
+    const double want[2][4] = {{0, 0, -3, 1}, {5, 1, -3, 2}};
+    for (size_t k = 0; k < 2; ++k) {
+        const rt::Vec3 c = spheres[k].transform.point(spheres[k].center);  // in float: 1e-5
+        EXPECT_NEAR(double(c.x), want[k][0], 1e-5) << k;
+        EXPECT_NEAR(double(c.y), want[k][1], 1e-5) << k;
+        EXPECT_NEAR(double(c.z), want[k][2], 1e-5) << k;
+        EXPECT_NEAR(double(spheres[k].radius), want[k][3], 1e-5) << k;
+    }
+    // A corner 1% off its sphere: not a sphere, so the mesh as it is.
+    TempDir tmp2;
+    const Imported bent = import(tmp2, joined(0.01).write(tmp2));
+    EXPECT_TRUE(bent.scene.all<rt::SphereDesc>().empty());
+    EXPECT_EQ(world_triangles(bent.scene).size(), 40u);
 }
 
 TEST(GltfQuantized, ANonNumericComponentTypeIsRefusedNamingTheAccessor) {

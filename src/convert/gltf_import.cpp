@@ -366,6 +366,29 @@ private:
         return true;
     }
 
+    // The spheres of an exported sphere's mesh that a pipeline quantised (KHR_mesh_quantization:
+    // its positions the sphere's moved and scaled uniformly, the node undoing it) and perhaps
+    // joined with others of its material (optimize's join): each part that shares no vertex
+    // with the others, the sphere about its box's centre that its vertices lie on, to within
+    // the 14 bits glTF Transform keeps of the mesh's extent (2e-4 of it; 1.1e-4 is half a
+    // step). None unless every part is one.
+    static std::vector<std::pair<V3, double>> quantised_spheres(const GltfTriangles& g) {
+        const double extent = std::max({g.hi[0] - g.lo[0], g.hi[1] - g.lo[1], g.hi[2] - g.lo[2]}) / 2;
+        std::vector<std::pair<V3, double>> out;
+        for (const GltfTriangles& part : connected_parts(g)) {
+            const size_t n = part.positions.size() / 3;
+            const V3 c = {(part.lo[0] + part.hi[0]) / 2, (part.lo[1] + part.hi[1]) / 2, (part.lo[2] + part.hi[2]) / 2};
+            double r = 0;
+            for (size_t i = 0; i < n; ++i)
+                r += norm(sub({part.positions[3 * i], part.positions[3 * i + 1], part.positions[3 * i + 2]}, c)) /
+                     double(n);
+            const double tolerance = 2e-4 * std::max(r, extent);
+            if (n < 4 || !(r > 10 * tolerance) || !on_sphere(part, c, r, tolerance / r)) return {};
+            out.push_back({c, r});
+        }
+        return out;
+    }
+
     // A tessellated sphere or plane of the export, back as itself while its vertices are
     // still on it (docs/gltf.md).
     bool as_shape(const GltfTriangles& g, const json& extras, const Affine& world, const std::vector<int>& nodes,
@@ -378,25 +401,23 @@ private:
             double r;
             if (!s.is_object() || !vec3(s.value("center", json()), c) || !number(s.value("radius", json()), r, 1e-30))
                 return false;
-            if (!on_sphere(g, c, r, 1e-4)) {
-                // Quantised (KHR_mesh_quantization), its positions are the sphere's moved and
-                // scaled uniformly, the node undoing it: the sphere they lie on, to within the
-                // 14 bits glTF Transform keeps (1.1e-4 of the radius).
-                c = {(g.lo[0] + g.hi[0]) / 2, (g.lo[1] + g.hi[1]) / 2, (g.lo[2] + g.hi[2]) / 2};
-                r = 0;
-                for (size_t i = 0; i < n; ++i)
-                    r += norm(sub({g.positions[3 * i], g.positions[3 * i + 1], g.positions[3 * i + 2]}, c)) / double(n);
-                if (!(r > 0) || !on_sphere(g, c, r, 2e-4)) return false;
+            std::vector<std::pair<V3, double>> spheres;
+            if (on_sphere(g, c, r, 1e-4))
+                spheres.push_back({c, r});
+            else
+                spheres = quantised_spheres(g);
+            if (spheres.empty()) return false;
+            for (const auto& [centre, radius] : spheres) {
+                ojson o = ojson::object();
+                o["_id"] = std::to_string(sphere_objects_.size() + 1);
+                o["Material"] = material;
+                add_vertex(centre);
+                o["Center"] = std::to_string(vertices_);
+                o["Radius"] = course_number(radius);
+                if (!nodes.empty()) o["Transformations"] = transformations(nodes);
+                o.update(own);
+                sphere_objects_.push_back(o);
             }
-            ojson o = ojson::object();
-            o["_id"] = std::to_string(sphere_objects_.size() + 1);
-            o["Material"] = material;
-            add_vertex(c);
-            o["Center"] = std::to_string(vertices_);
-            o["Radius"] = course_number(r);
-            if (!nodes.empty()) o["Transformations"] = transformations(nodes);
-            o.update(own);
-            sphere_objects_.push_back(o);
             return true;
         }
         if (extras.contains("plane") && n >= 3) {

@@ -71,6 +71,43 @@ void weld(GltfTriangles& g, const std::vector<double>& normals) {
 
 }  // namespace
 
+std::vector<GltfTriangles> connected_parts(const GltfTriangles& g) {
+    const size_t n = g.positions.size() / 3;
+    std::vector<uint32_t> root(n);
+    for (size_t i = 0; i < n; ++i) root[i] = uint32_t(i);
+    auto find = [&](uint32_t v) {
+        while (root[v] != v) v = root[v] = root[root[v]];
+        return v;
+    };
+    for (size_t t = 0; t + 2 < g.indices.size(); t += 3)
+        for (size_t k = 1; k < 3; ++k) root[find(g.indices[t + k])] = find(g.indices[t]);
+    std::vector<GltfTriangles> parts;
+    std::vector<uint32_t> local(n, UINT32_MAX), part_of_root(n, UINT32_MAX);
+    for (size_t t = 0; t + 2 < g.indices.size(); t += 3) {
+        uint32_t& p = part_of_root[find(g.indices[t])];
+        if (p == UINT32_MAX) {
+            p = uint32_t(parts.size());
+            parts.emplace_back();
+            parts.back().smooth = g.smooth;
+        }
+        GltfTriangles& part = parts[p];
+        for (size_t k = 0; k < 3; ++k) {
+            const uint32_t v = g.indices[t + k];
+            if (local[v] == UINT32_MAX) {
+                local[v] = uint32_t(part.positions.size() / 3);
+                for (size_t a = 0; a < 3; ++a) {
+                    const double x = g.positions[3 * v + a];
+                    part.positions.push_back(x);
+                    part.lo[a] = std::min(part.lo[a], x);
+                    part.hi[a] = std::max(part.hi[a], x);
+                }
+            }
+            part.indices.push_back(local[v]);
+        }
+    }
+    return parts;
+}
+
 void GltfPrimitives::fail(const std::string& element, const std::string& what) const {
     throw InputError(path_ + ": " + element + ": " + what);
 }

@@ -38,6 +38,10 @@ struct GltfTriangles {
     std::array<double, 3> lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};  // the box
 };
 
+// The parts of `g` that share no vertex, each with its own vertices (in the order of their
+// first use) and box: several where a pipeline joined meshes of one material into one.
+std::vector<GltfTriangles> connected_parts(const GltfTriangles& g);
+
 class GltfPrimitives {
 public:
     // `path` names the file in errors and warnings (appended to `warnings`).
