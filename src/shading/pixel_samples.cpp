@@ -37,42 +37,33 @@ CameraSample camera_sample(const Camera& cam, const PixelSampling& sampling, int
     CameraSample c;
     const uint64_t pixel = uint64_t(y) * uint64_t(cam.width) + uint64_t(x);
     c.stream = SampleStream(sampling.sampler, sampling.seed, pixel, uint32_t(k), uint32_t(sampling.pattern()));
+    // The camera's numbers, in order: its point in the pixel, on the lens, its time. Under
+    // Sobol without the grid, one point of Sobol's first dimensions, so that a moving or
+    // defocused edge is stratified across the pixel and the shutter or the lens at once
+    // (the grid's cells do that otherwise); else a pair, a pair and one number.
     const bool in_pixel = sampling.pattern() > 1, lens = cam.aperture > 0;
-    Real time = 0;
+    Real u[5];
+    const int dims = (in_pixel ? 2 : 0) + (lens ? 2 : 0) + (sampling.timed ? 1 : 0);
     if (sampling.sampler == SamplerKind::Sobol && !sampling.grid) {
-        // One point of Sobol's first dimensions for the pixel, the lens and the time
-        // together: a moving or defocused edge is then stratified across the pixel and
-        // the shutter or the lens at once (without the grid, whose cells do that).
-        Real u[5];
-        const int dims = (in_pixel ? 2 : 0) + (lens ? 2 : 0) + (sampling.timed ? 1 : 0);
         if (dims > 0) c.stream.sobol_point(u, dims);
-        const Real* next = u;
-        if (in_pixel) {
-            c.dx = next[0];
-            c.dy = next[1];
-            next += 2;
-        }
-        if (lens) {
-            c.lx = next[0];
-            c.ly = next[1];
-            next += 2;
-        }
-        if (sampling.timed) time = next[0];
     } else {
-        if (in_pixel) {
-            Real u1, u2;
-            c.stream.next2(u1, u2);
-            if (const int n = sampling.grid) {
-                c.dx = (Real(k % n) + u1) / Real(n);
-                c.dy = (Real(k / n) + u2) / Real(n);
-            } else {
-                c.dx = u1;
-                c.dy = u2;
-            }
-        }
-        if (lens) c.stream.next2(c.lx, c.ly);
-        if (sampling.timed) time = c.stream.next();
+        Real* q = u;
+        for (int pairs = (in_pixel ? 1 : 0) + (lens ? 1 : 0); pairs > 0; --pairs, q += 2) c.stream.next2(q[0], q[1]);
+        if (sampling.timed) *q = c.stream.next();
     }
+    const Real* next = u;
+    if (in_pixel) {
+        const int n = sampling.grid;
+        c.dx = n ? (Real(k % n) + next[0]) / Real(n) : next[0];
+        c.dy = n ? (Real(k / n) + next[1]) / Real(n) : next[1];
+        next += 2;
+    }
+    if (lens) {
+        c.lx = next[0];
+        c.ly = next[1];
+        next += 2;
+    }
+    const Real time = sampling.timed ? next[0] : Real(0);
     c.ray = cam.sample_ray(x, y, c.dx, c.dy, c.lx, c.ly, time);
     return c;
 }
