@@ -119,6 +119,54 @@ TEST(GltfPipelineFiles, GltfTransformsOutputsImportAsTheOriginal) {
     }
 }
 
+// tests/fuzz/seeds/gltf/palette_optimize.glb: tests/gltf/palette_scene.json (six materials,
+// three spheres, a plane sharing its material with a mesh) exported with
+// --sphere-segments 16, then glTF Transform's optimize: its palette merges the six materials
+// into one, its join the spheres into one mesh and the plane into the mesh of its material.
+TEST(GltfPipelineFiles, OptimizesPaletteAndJoinComeBackAsTheScenesMaterialsSpheresAndPlane) {
+    const std::string dir = seeds();
+    ASSERT_FALSE(dir.empty()) << "tests/fuzz/seeds/gltf not found above " << fs::current_path();
+    TempDir tmp;
+    const rt::SceneDesc original = rt::load_scene(dir + "/../../../gltf/palette_scene.json");
+    const Imported back = import(tmp, dir + "/palette_optimize.glb");
+    auto eq = [](const rt::Vec3& a, const rt::Vec3& b) { return a.x == b.x && a.y == b.y && a.z == b.z; };
+    auto same = [&](const rt::MaterialDesc& a, const rt::MaterialDesc& b) {
+        return a.type == b.type && eq(a.ambient, b.ambient) && eq(a.diffuse, b.diffuse) && eq(a.specular, b.specular) &&
+               a.phong_exponent == b.phong_exponent;
+    };
+    const auto& spheres = back.scene.all<rt::SphereDesc>();
+    ASSERT_EQ(spheres.size(), 3u);
+    for (const rt::SphereDesc& o : original.all<rt::SphereDesc>()) {
+        SCOPED_TRACE("sphere " + o.id);
+        int found = 0;
+        for (const rt::SphereDesc& s : spheres) {
+            const rt::Vec3 c = s.transform.point(s.center);
+            const double r = rt::length(s.transform.point(s.center + rt::Vec3{s.radius, 0, 0}) - c);
+            if (rt::length(c - o.center) > 1e-3 || std::fabs(r - double(o.radius)) > 1e-3) continue;
+            ++found;
+            EXPECT_TRUE(same(back.scene.materials[s.material], original.materials[o.material]));
+        }
+        EXPECT_EQ(found, 1);
+    }
+    const auto& planes = back.scene.all<rt::PlaneDesc>();
+    ASSERT_EQ(planes.size(), 1u);
+    const rt::PlaneDesc& plane = original.all<rt::PlaneDesc>()[0];
+    EXPECT_TRUE(eq(planes[0].point, plane.point));
+    EXPECT_TRUE(eq(planes[0].normal, plane.normal));
+    EXPECT_TRUE(same(back.scene.materials[planes[0].material], original.materials[plane.material]));
+    // The three meshes, each with its own material again: the same triangles per material.
+    ASSERT_EQ(back.scene.meshes.size(), original.meshes.size());
+    for (const rt::MeshDesc& o : original.meshes) {
+        int found = 0;
+        for (const rt::MeshDesc& m : back.scene.meshes)
+            if (same(back.scene.materials[m.material], original.materials[o.material])) {
+                ++found;
+                EXPECT_EQ(m.indices.size(), o.indices.size());
+            }
+        EXPECT_EQ(found, 1) << "mesh " << o.id;
+    }
+}
+
 #ifndef RT_NO_MESHOPT
 namespace {
 

@@ -198,17 +198,23 @@ public:
         tinygltf::Scene& s = model_.scenes[0];
         // The file's name, not its path: a shared file carries none of its author's folders.
         s.name = std::filesystem::path(scene_.path).filename().string();
-        s.extras = ours_as_extras({{"backgroundColor", arr(scene_.background)},
-                                   {"shadowRayEpsilon", double(scene_.shadow_ray_epsilon)},
-                                   {"intersectionTestEpsilon", double(scene_.intersection_test_epsilon)},
-                                   {"maxRecursionDepth", scene_.max_recursion_depth},
-                                   {"ambientLight", arr(scene_.ambient_light)}});
         add_materials();
         add_meshes();
         add_shapes();
         add_cameras();
         add_lights();
         add_area_lights();
+        // The settings, and every material and plane once more: pipelines that merge
+        // materials (glTF Transform's palette) or meshes (its join) keep one element's extras
+        // of those they merge, and the scene's (docs/gltf.md).
+        json extras = {{"backgroundColor", arr(scene_.background)},
+                       {"shadowRayEpsilon", double(scene_.shadow_ray_epsilon)},
+                       {"intersectionTestEpsilon", double(scene_.intersection_test_epsilon)},
+                       {"maxRecursionDepth", scene_.max_recursion_depth},
+                       {"ambientLight", arr(scene_.ambient_light)},
+                       {"materials", material_extras_}};
+        if (!plane_extras_.empty()) extras["planes"] = plane_extras_;
+        model_.scenes[0].extras = ours_as_extras(extras);
         for (size_t i = 0; i < model_.nodes.size(); ++i) model_.scenes[0].nodes.push_back(int(i));
     }
 
@@ -237,6 +243,7 @@ private:
             json extras = material_extras(m);
             extras.update(extras_of(kMaterialExtras, m));
             g.extras = ours_as_extras(extras);
+            material_extras_.push_back(std::move(extras));
             model_.materials.push_back(std::move(g));
         }
         if (transmission) model_.extensionsUsed.push_back("KHR_materials_transmission");
@@ -327,6 +334,7 @@ private:
             const Polygons poly = Plane::polygons(d, frame);
             geometries_.push_back(add_geometry(buffers_, poly.vertices, triangles_of(poly), false, false));
             geometries_.back().extras["plane"] = {{"point", arr(d.point)}, {"normal", arr(d.normal)}};
+            plane_extras_.push_back(geometries_.back().extras["plane"]);
             const std::string name = "Plane " + d.id;
             add_node(name, mesh_of(geometries_.size() - 1, d.material, name), Affine{}, d.motion);
         }
@@ -418,6 +426,7 @@ private:
     ConvertResult& result_;
     BufferWriter buffers_;
     std::vector<Geometry> geometries_;
+    json material_extras_ = json::array(), plane_extras_ = json::array();  // for the scene's extras
     std::map<std::pair<size_t, uint32_t>, int> meshes_;
 };
 

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <deque>
 #include <filesystem>
 #include <map>
 #include <set>
@@ -15,6 +16,7 @@
 #include "gltf_extras.h"
 #include "gltf_import.h"
 #include "gltf_io.h"
+#include "gltf_palette.h"
 #include "gltf_primitives.h"
 #include "rt/convert/gltf_materials.h"
 #include "rt/core/affine.h"
@@ -29,6 +31,12 @@ namespace rt {
 namespace {
 
 using rtgltf::to_json;
+
+// Triangles drawn with one material (its _id).
+struct Piece {
+    const GltfTriangles* triangles;
+    std::string material;
+};
 
 // What the import made of a primitive's triangles, the first time a node showed them.
 struct FirstUse {
@@ -63,7 +71,8 @@ public:
         scene_settings(scene);
         scene["Cameras"] = {{"Camera", cameras()}};
         scene["Lights"] = lights();
-        scene["Materials"] = {{"Material", import_materials(model_, path_, needs_default_material_, out_)}};
+        scene["Materials"] = {{"Material", import_materials(model_, path_, needs_default_material_, texels_,
+                                                            scene_extras_, scene_at_, out_)}};
         if (!transforms_.empty()) scene["Transformations"] = {{"Composite", transforms_}};
         if (!vertex_data_.empty()) scene["VertexData"] = {{"_data", vertex_data_}, {"_type", "xyz"}};
         ojson objects = ojson::object();
@@ -170,6 +179,7 @@ private:
                 warn("scene " + std::to_string(s) + " of " + std::to_string(model_.scenes.size()) + " converted");
             roots = model_.scenes[size_t(s)].nodes;
             scene_extras_ = ours_in(model_.scenes[size_t(s)].extras);
+            scene_at_ = "/scenes/" + std::to_string(s);
         } else {  // no scenes: every node that is nobody's child
             std::vector<bool> child(model_.nodes.size(), false);
             for (const tinygltf::Node& n : model_.nodes)
@@ -178,6 +188,17 @@ private:
             for (size_t i = 0; i < child.size(); ++i)
                 if (!child[i]) roots.push_back(int(i));
         }
+        if (scene_extras_.is_object() && scene_extras_.value("planes", json()).is_array())
+            for (const json& j : scene_extras_["planes"]) {
+                V3 p, n;
+                if (j.is_object() && vec3(j.value("point", json()), p) && vec3(j.value("normal", json()), n) &&
+                    norm(n) > 0)
+                    scene_planes_.push_back({p, n});
+            }
+        uses_.assign(model_.meshes.size(), 0);
+        for (const tinygltf::Node& n : model_.nodes)
+            if (n.mesh >= 0 && size_t(n.mesh) < uses_.size())
+                uses_[size_t(n.mesh)] += n.extensions.count("EXT_mesh_gpu_instancing") ? 2 : 1;
         visited_.assign(model_.nodes.size(), false);
         locals_.assign(model_.nodes.size(), Affine{});
         for (int r : roots) visit(r, Affine{}, {}, "/scenes/nodes");
@@ -289,59 +310,169 @@ private:
         for (size_t p = 0; p < mesh.primitives.size(); ++p) {
             const GltfTriangles* g = primitives_.get(m, int(p));
             if (!g || g->indices.empty()) continue;
-            const std::string material = material_ref(
-                mesh.primitives[p].material, "/meshes/" + std::to_string(m) + "/primitives/" + std::to_string(p));
             for (int c = 0; c < 8; ++c)  // the corners of its box, moved
                 extent(apply(
                     world, {(c & 1 ? g->hi : g->lo)[0], (c & 2 ? g->hi : g->lo)[1], (c & 4 ? g->hi : g->lo)[2]}, true));
-            if (mesh.primitives.size() == 1 && as_shape(*g, extras, world, nodes, material, own, np)) continue;
-            ojson o = ojson::object();
-            if (options_.bake_transforms) {
-                ImportedMesh baked;
-                baked.ply_name = ply_prefix_ + "_" + std::to_string(out_.meshes.size() + 1) + ".ply";
-                for (size_t i = 0; i < g->positions.size(); i += 3) {
-                    const V3 q = apply(world, {g->positions[i], g->positions[i + 1], g->positions[i + 2]}, true);
-                    baked.positions.insert(baked.positions.end(), q.begin(), q.end());
-                }
-                baked.indices = g->indices;
-                if (world.det() < 0)  // keep the outside outside (rt/shapes/shape.h, Polygons::move)
-                    for (size_t i = 0; i < baked.indices.size(); i += 3)
-                        std::swap(baked.indices[i + 1], baked.indices[i + 2]);
-                o["_id"] = std::to_string(++object_ids_);
-                o["_shadingMode"] = g->smooth ? "smooth" : "flat";
-                o["Material"] = material;
-                o["Faces"] = {{"_plyFile", baked.ply_name}};
-                o.update(own);
-                out_.meshes.push_back(std::move(baked));
-                mesh_objects_.push_back(o);
-                continue;
-            }
-            const std::string chain = transformations(nodes);
-            o["_id"] = std::to_string(++object_ids_);
-            FirstUse& first = first_use_[g];
-            if (first.base < 0) {  // its first use: the mesh itself
-                first.base = object_ids_;
-                first.ply = out_.meshes.size();
-                ImportedMesh im;
-                im.ply_name = ply_prefix_ + "_" + std::to_string(out_.meshes.size() + 1) + ".ply";
-                im.positions = g->positions;
-                im.indices = g->indices;
-                out_.meshes.push_back(std::move(im));
-                o["_shadingMode"] = g->smooth ? "smooth" : "flat";
-                o["Material"] = material;
-                if (!chain.empty()) o["Transformations"] = chain;
-                o["Faces"] = {{"_plyFile", out_.meshes[first.ply].ply_name}};
-                o.update(own);
-                mesh_objects_.push_back(o);
-            } else {  // another use: an instance of the first, under its own matrix
-                o["_baseMeshId"] = std::to_string(first.base);
-                o["_resetTransform"] = "true";
-                o["Material"] = material;
-                if (!chain.empty()) o["Transformations"] = chain;
-                o.update(own);
-                instance_objects_.push_back(o);
+            for (const Piece& piece : pieces(m, int(p), *g)) {
+                if (mesh.primitives.size() == 1 &&
+                    as_shape(*piece.triangles, *g, extras, world, nodes, piece.material, own, np))
+                    continue;
+                // Planes a pipeline joined with other meshes: only where the mesh is shown
+                // once, as the export's planes are in world space.
+                const GltfTriangles* t = uses_[size_t(m)] == 1
+                                             ? without_planes(*piece.triangles, world, piece.material, own, np)
+                                             : piece.triangles;
+                if (t) add_triangles(*t, piece.material, world, nodes, own);
             }
         }
+    }
+
+    // The triangles of primitive p of mesh m (read as `g`), by material: one piece, or a
+    // piece per palette texel (gltf_palette.h).
+    const std::vector<Piece>& pieces(int m, int p, const GltfTriangles& g) {
+        const int material = model_.meshes[size_t(m)].primitives[size_t(p)].material;
+        const std::string ref =
+            material_ref(material, "/meshes/" + std::to_string(m) + "/primitives/" + std::to_string(p));
+        const auto key = std::make_pair(&g, material);
+        if (const auto it = pieces_.find(key); it != pieces_.end()) return it->second;
+        std::vector<Piece>& out = pieces_[key];
+        const std::vector<PaletteTexel> texels = palettes_.triangle_texels(m, p);
+        if (texels.size() != g.indices.size() / 3) {
+            out.push_back({&g, ref});
+            return out;
+        }
+        std::map<PaletteTexel, uint32_t> group_of;  // in the order of first use
+        std::vector<uint32_t> groups;
+        std::vector<std::string> refs;
+        for (const PaletteTexel& t : texels) {
+            const auto [it, added] = group_of.emplace(t, uint32_t(group_of.size()));
+            groups.push_back(it->second);
+            if (!added) continue;
+            const auto [at, first] = texel_index_.emplace(t, texels_.size());
+            if (first) texels_.push_back(t);
+            refs.push_back(std::to_string(model_.materials.size() + 2 + at->second));
+        }
+        if (refs.size() == 1) {
+            out.push_back({&g, refs[0]});
+            return out;
+        }
+        std::vector<GltfTriangles> split = split_triangles(g, groups, refs.size());
+        for (size_t i = 0; i < split.size(); ++i) {
+            made_.push_back(std::move(split[i]));
+            out.push_back({&made_.back(), refs[i]});
+        }
+        return out;
+    }
+
+    // `g` without the parts (sharing no vertex with the rest) that are the export's planes:
+    // the square of two triangles it writes for one (gltf_export.cpp), its corners moved by
+    // `world` on the plane of the scene's extras to within the 14 bits glTF Transform keeps
+    // (2e-4 of their distance from its point), each added as that plane. nullptr when
+    // nothing is left.
+    const GltfTriangles* without_planes(const GltfTriangles& g, const Affine& world, const std::string& material,
+                                        const ojson& own, const std::string& np) {
+        if (scene_planes_.empty()) return &g;
+        std::vector<GltfTriangles> parts = connected_parts(g);
+        std::vector<uint32_t> group;  // per triangle: 0 kept, 1 a plane
+        bool any = false;
+        for (const GltfTriangles& part : parts) {
+            uint32_t is_plane = 0;
+            if (part.positions.size() == 12 && part.indices.size() == 6) {
+                const GltfTriangles at = moved(part, world);
+                for (const auto& [point, normal] : scene_planes_)
+                    if (on_plane(at, point, normal, 2e-4)) {
+                        add_plane(point, normal, material, "", own, np);
+                        is_plane = 1;
+                        any = true;
+                        break;
+                    }
+            }
+            group.insert(group.end(), part.indices.size() / 3, is_plane);
+        }
+        if (!any) return &g;
+        // The kept parts, in one list of triangles (connected_parts' order).
+        GltfTriangles joined;
+        joined.smooth = g.smooth;
+        for (size_t i = 0, t = 0; i < parts.size(); t += parts[i].indices.size() / 3, ++i) {
+            if (group[t]) continue;
+            const uint32_t base = uint32_t(joined.positions.size() / 3);
+            joined.positions.insert(joined.positions.end(), parts[i].positions.begin(), parts[i].positions.end());
+            for (uint32_t v : parts[i].indices) joined.indices.push_back(base + v);
+            for (size_t k = 0; k < 3; ++k) {
+                joined.lo[k] = std::min(joined.lo[k], parts[i].lo[k]);
+                joined.hi[k] = std::max(joined.hi[k], parts[i].hi[k]);
+            }
+        }
+        if (joined.indices.empty()) return nullptr;
+        made_.push_back(std::move(joined));
+        return &made_.back();
+    }
+
+    // A Mesh of `g`, or a MeshInstance of the Mesh its first use made.
+    void add_triangles(const GltfTriangles& g, const std::string& material, const Affine& world,
+                       const std::vector<int>& nodes, const ojson& own) {
+        ojson o = ojson::object();
+        if (options_.bake_transforms) {
+            ImportedMesh baked;
+            baked.ply_name = ply_prefix_ + "_" + std::to_string(out_.meshes.size() + 1) + ".ply";
+            for (size_t i = 0; i < g.positions.size(); i += 3) {
+                const V3 q = apply(world, {g.positions[i], g.positions[i + 1], g.positions[i + 2]}, true);
+                baked.positions.insert(baked.positions.end(), q.begin(), q.end());
+            }
+            baked.indices = g.indices;
+            if (world.det() < 0)  // keep the outside outside (rt/shapes/shape.h, Polygons::move)
+                for (size_t i = 0; i < baked.indices.size(); i += 3)
+                    std::swap(baked.indices[i + 1], baked.indices[i + 2]);
+            o["_id"] = std::to_string(++object_ids_);
+            o["_shadingMode"] = g.smooth ? "smooth" : "flat";
+            o["Material"] = material;
+            o["Faces"] = {{"_plyFile", baked.ply_name}};
+            o.update(own);
+            out_.meshes.push_back(std::move(baked));
+            mesh_objects_.push_back(o);
+            return;
+        }
+        const std::string chain = transformations(nodes);
+        o["_id"] = std::to_string(++object_ids_);
+        FirstUse& first = first_use_[&g];
+        if (first.base < 0) {  // its first use: the mesh itself
+            first.base = object_ids_;
+            first.ply = out_.meshes.size();
+            ImportedMesh im;
+            im.ply_name = ply_prefix_ + "_" + std::to_string(out_.meshes.size() + 1) + ".ply";
+            im.positions = g.positions;
+            im.indices = g.indices;
+            out_.meshes.push_back(std::move(im));
+            o["_shadingMode"] = g.smooth ? "smooth" : "flat";
+            o["Material"] = material;
+            if (!chain.empty()) o["Transformations"] = chain;
+            o["Faces"] = {{"_plyFile", out_.meshes[first.ply].ply_name}};
+            o.update(own);
+            mesh_objects_.push_back(o);
+        } else {  // another use: an instance of the first, under its own matrix
+            o["_baseMeshId"] = std::to_string(first.base);
+            o["_resetTransform"] = "true";
+            o["Material"] = material;
+            if (!chain.empty()) o["Transformations"] = chain;
+            o.update(own);
+            instance_objects_.push_back(o);
+        }
+    }
+
+    // `g` with its vertices moved by `m`, and its box.
+    static GltfTriangles moved(const GltfTriangles& g, const Affine& m) {
+        GltfTriangles out = g;
+        out.lo = {HUGE_VAL, HUGE_VAL, HUGE_VAL};
+        out.hi = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+        for (size_t i = 0; i < g.positions.size(); i += 3) {
+            const V3 q = apply(m, {g.positions[i], g.positions[i + 1], g.positions[i + 2]}, true);
+            for (size_t k = 0; k < 3; ++k) {
+                out.positions[i + k] = q[k];
+                out.lo[k] = std::min(out.lo[k], q[k]);
+                out.hi[k] = std::max(out.hi[k], q[k]);
+            }
+        }
+        return out;
     }
 
     // Whether every vertex of `g` is within `tolerance` x r of the sphere (c, r).
@@ -371,9 +502,9 @@ private:
     // joined with others of its material (optimize's join): each part that shares no vertex
     // with the others, the sphere about its box's centre that its vertices lie on, to within
     // the 14 bits glTF Transform keeps of the mesh's extent (2e-4 of it; 1.1e-4 is half a
-    // step). None unless every part is one.
-    static std::vector<std::pair<V3, double>> quantised_spheres(const GltfTriangles& g) {
-        const double extent = std::max({g.hi[0] - g.lo[0], g.hi[1] - g.lo[1], g.hi[2] - g.lo[2]}) / 2;
+    // step; `extent`: half the largest side of the box of the primitive `g` was split from,
+    // whose steps they are). None unless every part is one.
+    static std::vector<std::pair<V3, double>> quantised_spheres(const GltfTriangles& g, double extent) {
         std::vector<std::pair<V3, double>> out;
         for (const GltfTriangles& part : connected_parts(g)) {
             const size_t n = part.positions.size() / 3;
@@ -391,8 +522,8 @@ private:
 
     // A tessellated sphere or plane of the export, back as itself while its vertices are
     // still on it (docs/gltf.md).
-    bool as_shape(const GltfTriangles& g, const json& extras, const Affine& world, const std::vector<int>& nodes,
-                  const std::string& material, const ojson& own, const std::string& np) {
+    bool as_shape(const GltfTriangles& g, const GltfTriangles& whole, const json& extras, const Affine& world,
+                  const std::vector<int>& nodes, const std::string& material, const ojson& own, const std::string& np) {
         if (!extras.is_object()) return false;
         const size_t n = g.positions.size() / 3;
         if (extras.contains("sphere") && n >= 4) {
@@ -402,10 +533,24 @@ private:
             if (!s.is_object() || !vec3(s.value("center", json()), c) || !number(s.value("radius", json()), r, 1e-30))
                 return false;
             std::vector<std::pair<V3, double>> spheres;
-            if (on_sphere(g, c, r, 1e-4))
+            bool in_world = false;  // spheres in world space, under no transformation
+            if (on_sphere(g, c, r, 1e-4)) {
                 spheres.push_back({c, r});
-            else
-                spheres = quantised_spheres(g);
+            } else {
+                const double extent =
+                    std::max({whole.hi[0] - whole.lo[0], whole.hi[1] - whole.lo[1], whole.hi[2] - whole.lo[2]}) / 2;
+                spheres = quantised_spheres(g, extent);
+                if (spheres.empty() && !world.is_identity()) {
+                    // Joined under a node whose matrix is not a uniform scaling (optimize's
+                    // flatten and join): spheres in world space, where a step is as long as
+                    // the matrix's longest axis makes it.
+                    double stretch = 0;
+                    for (int k = 0; k < 3; ++k)
+                        stretch = std::max(stretch, norm({world.m[0][k], world.m[1][k], world.m[2][k]}));
+                    spheres = quantised_spheres(moved(g, world), extent * stretch);
+                    in_world = true;
+                }
+            }
             if (spheres.empty()) return false;
             for (const auto& [centre, radius] : spheres) {
                 ojson o = ojson::object();
@@ -414,7 +559,7 @@ private:
                 add_vertex(centre);
                 o["Center"] = std::to_string(vertices_);
                 o["Radius"] = course_number(radius);
-                if (!nodes.empty()) o["Transformations"] = transformations(nodes);
+                if (!nodes.empty() && !in_world) o["Transformations"] = transformations(nodes);
                 o.update(own);
                 sphere_objects_.push_back(o);
             }
@@ -436,9 +581,7 @@ private:
                     for (size_t k = 0; k < 3; ++k) p[k] += g.positions[3 * i + k] / double(n);
                 if (!on_plane(g, p, nrm, 2e-4)) return false;
             }
-            ojson o = ojson::object();
-            o["_id"] = std::to_string(plane_objects_.size() + 1);
-            o["Material"] = material;
+            std::string chain;
             if (options_.bake_transforms && !world.is_identity()) {  // a moved plane is a plane
                 const Affine inv_t = world.inverse();
                 p = apply(world, p, true);
@@ -447,17 +590,28 @@ private:
                     t[size_t(r)] = inv_t.m[0][r] * nrm[0] + inv_t.m[1][r] * nrm[1] + inv_t.m[2][r] * nrm[2];
                 nrm = t;
             } else if (!nodes.empty()) {
-                o["Transformations"] = transformations(nodes);
+                chain = transformations(nodes);
             }
-            add_vertex(p);
-            o["Point"] = std::to_string(vertices_);
-            o["Normal"] = course_vec(nrm);
-            if (!own.empty())
-                warn(np + "/extras/" + kGltfExtrasKey + "/motionBlur: a plane does not move in the format: left out");
-            plane_objects_.push_back(o);
+            add_plane(p, nrm, material, chain, own, np);
             return true;
         }
         return false;
+    }
+
+    // A Plane under the Transformations `chain` (none: ""); `own` the keys node `np` gives
+    // its objects (a MotionBlur, which a plane cannot take).
+    void add_plane(const V3& p, const V3& nrm, const std::string& material, const std::string& chain, const ojson& own,
+                   const std::string& np) {
+        ojson o = ojson::object();
+        o["_id"] = std::to_string(plane_objects_.size() + 1);
+        o["Material"] = material;
+        if (!chain.empty()) o["Transformations"] = chain;
+        add_vertex(p);
+        o["Point"] = std::to_string(vertices_);
+        o["Normal"] = course_vec(nrm);
+        if (!own.empty())
+            warn(np + "/extras/" + kGltfExtrasKey + "/motionBlur: a plane does not move in the format: left out");
+        plane_objects_.push_back(o);
     }
 
     void extent(const V3& p) {
@@ -696,7 +850,17 @@ private:
     SceneImport& out_;
 
     GltfPrimitives primitives_;
+    GltfPalettes palettes_{model_, primitives_};
     std::map<const GltfTriangles*, FirstUse> first_use_;
+    // A primitive's triangles drawn with each material (one, or a palette's: gltf_palette.h),
+    // per triangle list and glTF material; triangles made here, at stable addresses.
+    std::map<std::pair<const GltfTriangles*, int>, std::vector<Piece>> pieces_;
+    std::deque<GltfTriangles> made_;
+    std::vector<PaletteTexel> texels_;  // the palette texels' materials, in _id order
+    std::map<PaletteTexel, size_t> texel_index_;
+    std::vector<int> uses_;                        // the nodes (or GPU instances: 2) showing each mesh
+    std::vector<std::pair<V3, V3>> scene_planes_;  // the export's planes (point, normal)
+    std::string scene_at_ = "/scenes/0";
     std::vector<bool> visited_;
     std::vector<Affine> locals_;          // each node's own matrix, then each GPU instance's
     std::map<int, size_t> composite_of_;  // node -> its Composite's _id

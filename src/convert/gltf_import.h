@@ -6,6 +6,7 @@
 
 #include <array>
 #include <string>
+#include <vector>
 
 #include "gltf_io.h"
 #include "rt/loader/scene_desc.h"
@@ -41,7 +42,15 @@ inline bool colour(const json& j, V3& out) { return vec3(j, out, 0); }
 // else by the table; then, with `with_default` (for primitives without one), a default
 // grey. Warnings of what the format lacks (textures, emission, alpha) and a note per
 // material go to `out`; `path` names the file in them.
-ojson import_materials(const tinygltf::Model& model, const std::string& path, bool with_default, SceneImport& out);
+// Then one per palette texel of `texels` (gltf_palette.h), with the _id M + 2 + its index
+// (M materials in the file): the exported material of the scene's extras ("materials") or
+// the glTF material's own whose PBR values the texel holds, else the table's material of
+// the glTF material's factors times the texel. `scene_extras`: the "ceng795" extras of the
+// scene converted, `scene_at` its pointer ("/scenes/0").
+struct PaletteTexel;
+ojson import_materials(const tinygltf::Model& model, const std::string& path, bool with_default,
+                       const std::vector<PaletteTexel>& texels, const json& scene_extras, const std::string& scene_at,
+                       SceneImport& out);
 #endif
 
 }  // namespace rt

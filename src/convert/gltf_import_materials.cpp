@@ -7,6 +7,7 @@
 
 #include "gltf_extras.h"
 #include "gltf_import.h"
+#include "gltf_palette.h"
 #include "rt/convert/gltf_materials.h"
 
 namespace rt {
@@ -15,8 +16,9 @@ namespace {
 
 using Warn = std::function<void(const std::string&)>;
 
-// The material's PBR factors; what the format lacks is warned of, with `mp` its place.
-PbrMaterial pbr(const tinygltf::Material& m, const std::string& mp, const Warn& warn) {
+// The material's PBR factors; what the format lacks is warned of, with `mp` its place
+// (its base colour and metallic-roughness textures not where they are `palette`s).
+PbrMaterial pbr(const tinygltf::Material& m, const std::string& mp, const Warn& warn, bool palette = false) {
     PbrMaterial p;
     const auto& pbr = m.pbrMetallicRoughness;
     for (size_t k = 0; k < 3 && k < pbr.baseColorFactor.size(); ++k) p.base[k] = pbr.baseColorFactor[k];
@@ -35,8 +37,8 @@ PbrMaterial pbr(const tinygltf::Material& m, const std::string& mp, const Warn& 
         if (vec3(v.value("attenuationColor", json()), a)) std::copy(a.begin(), a.end(), p.attenuation);
     }
     std::vector<std::string> textures;
-    if (pbr.baseColorTexture.index >= 0) textures.push_back("base colour");
-    if (pbr.metallicRoughnessTexture.index >= 0) textures.push_back("metallic-roughness");
+    if (pbr.baseColorTexture.index >= 0 && !palette) textures.push_back("base colour");
+    if (pbr.metallicRoughnessTexture.index >= 0 && !palette) textures.push_back("metallic-roughness");
     if (m.normalTexture.index >= 0) textures.push_back("normal");
     if (m.emissiveTexture.index >= 0) textures.push_back("emissive");
     if (m.occlusionTexture.index >= 0) textures.push_back("occlusion");
@@ -52,15 +54,65 @@ PbrMaterial pbr(const tinygltf::Material& m, const std::string& mp, const Warn& 
     return p;
 }
 
+// The course material a palette texel stands for: of the exported materials (`listed`, the
+// scene's extras, then the glTF material's own), the one whose PBR values the table maps to
+// the texel's (to the 8 bits a texel keeps: 1 level) and to the material's other factors.
+// Its index in `listed`, or -1 (then `found` is the table's material of the texel's values).
+int material_of_texel(const PbrMaterial& factors, const PaletteTexel& t, const std::vector<json>& listed,
+                      MaterialDesc& found) {
+    PbrMaterial p = factors;
+    for (size_t k = 0; k < 3; ++k)
+        if (t.base[k] >= 0) p.base[k] *= srgb_to_linear(t.base[k]);
+    if (t.roughness >= 0) p.roughness *= t.roughness / 255.0;
+    if (t.metallic >= 0) p.metallic *= t.metallic / 255.0;
+    // Whether `want` (linear, before the factor) is what the 8-bit `texel` holds.
+    auto holds = [](double want, double factor, int texel, bool srgb) {
+        if (texel < 0) return true;
+        if (!(factor > 0)) return std::fabs(want) <= 1e-4;
+        const double v = want / factor;
+        return std::fabs((srgb ? linear_to_srgb(v) : v) * 255 - texel) <= 1;
+    };
+    double best = HUGE_VAL;
+    int index = -1;
+    for (size_t i = 0; i < listed.size(); ++i) {
+        MaterialDesc d;
+        if (!material_from_extras(listed[i], d)) continue;
+        PbrMaterial q = pbr_of(d);
+        bool ok = holds(q.roughness, factors.roughness, t.roughness, false) &&
+                  holds(q.metallic, factors.metallic, t.metallic, false);
+        double distance = 0;
+        for (size_t k = 0; k < 3; ++k) {
+            ok = ok && holds(q.base[k], factors.base[k], t.base[k], true);
+            distance += std::fabs(q.base[k] - p.base[k]);
+        }
+        if (!ok) continue;
+        // The texel's values as the listed material's, the rest compared as any material's.
+        if (t.base[0] >= 0) std::copy(p.base, p.base + 3, q.base);
+        if (t.roughness >= 0) q.roughness = p.roughness;
+        if (t.metallic >= 0) q.metallic = p.metallic;
+        if (same_pbr(q, p) && distance < best) {
+            best = distance;
+            found = d;
+            index = int(i);
+        }
+    }
+    if (index < 0) found = material_of(p);
+    return index;
+}
+
 }  // namespace
 
-ojson import_materials(const tinygltf::Model& model, const std::string& path, bool with_default, SceneImport& out) {
+ojson import_materials(const tinygltf::Model& model, const std::string& path, bool with_default,
+                       const std::vector<PaletteTexel>& texels, const json& scene_extras, const std::string& scene_at,
+                       SceneImport& out) {
     const Warn warn = [&](const std::string& what) { out.warnings.push_back(path + ": " + what); };
     ojson list = ojson::array();
     for (size_t i = 0; i < model.materials.size(); ++i) {
         const tinygltf::Material& m = model.materials[i];
         const std::string mp = "/materials/" + std::to_string(i);
-        const PbrMaterial p = pbr(m, mp, warn);
+        const bool palette =
+            std::any_of(texels.begin(), texels.end(), [&](const PaletteTexel& t) { return size_t(t.material) == i; });
+        const PbrMaterial p = pbr(m, mp, warn, palette);
         MaterialDesc exact;
         const bool from_extras = material_from_extras(ours_in(m.extras), exact) && same_pbr(pbr_of(exact), p);
         const MaterialDesc d = from_extras ? exact : material_of(p);
@@ -70,12 +122,39 @@ ojson import_materials(const tinygltf::Model& model, const std::string& path, bo
         list.push_back(std::move(entry));
         out.notes.push_back("material " + std::to_string(i + 1) + " (" + (m.name.empty() ? "unnamed" : m.name) +
                             "): " + material_type_name(d.type) +
-                            (from_extras ? ", the exported course values" : ", from its PBR values"));
+                            (from_extras ? ", the exported course values" : ", from its PBR values") +
+                            (palette ? "; its textures a palette: a material per texel, below" : ""));
     }
     if (with_default) {
         list.push_back(default_material(model.materials.size() + 1));
         out.notes.push_back("material " + std::to_string(model.materials.size() + 1) +
                             ": default grey, for primitives without a material");
+    }
+    std::vector<json> exported;
+    if (scene_extras.is_object() && scene_extras.value("materials", json()).is_array())
+        for (const json& j : scene_extras["materials"]) exported.push_back(j);
+    const Warn quiet = [](const std::string&) {};  // said of the material already
+    for (size_t k = 0; k < texels.size(); ++k) {
+        const PaletteTexel& t = texels[k];
+        const tinygltf::Material& m = model.materials[size_t(t.material)];
+        std::vector<json> listed = exported;
+        listed.push_back(ours_in(m.extras));
+        MaterialDesc d;
+        const int found = material_of_texel(pbr(m, "", quiet), t, listed, d);
+        const bool from_extras = found >= 0;
+        const size_t id = model.materials.size() + 2 + k;
+        ojson entry = material_entry(d, id);
+        if (from_extras)  // its Roughness too, which no PBR value holds
+            read_extras(kMaterialExtras, listed[size_t(found)],
+                        path + ": " +
+                            (size_t(found) < exported.size()
+                                 ? scene_at + "/extras/" + kGltfExtrasKey + "/materials/" + std::to_string(found)
+                                 : "/materials/" + std::to_string(t.material) + "/extras/" + kGltfExtrasKey),
+                        false, entry);
+        list.push_back(std::move(entry));
+        out.notes.push_back("material " + std::to_string(id) + " (" + (m.name.empty() ? "unnamed" : m.name) +
+                            ", a palette texel): " + material_type_name(d.type) +
+                            (from_extras ? ", the exported course values" : ", from its PBR values and the texel"));
     }
     return list;
 }

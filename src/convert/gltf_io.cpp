@@ -1,8 +1,8 @@
 // glTF files in and out (gltf_io.h): tinygltf's code is compiled here, once, without
 // its image reading and writing (TINYGLTF_NO_STB_IMAGE*, TINYGLTF_NO_EXTERNAL_IMAGE):
-// textures are not in the course's format, and an image it cannot read must not stop a
-// conversion that does not need it. Nothing here depends on the precision: one copy, in
-// the double library, serves both (namespace rtgltf, which the float copy's -Drt=rt_float
+// textures are not in the course's format (but for palettes, which the import decodes
+// itself), and an image it cannot read must not stop a conversion that does not need it. Nothing here depends on the
+// precision: one copy, in the double library, serves both (namespace rtgltf, which the float copy's -Drt=rt_float
 // leaves alone; see rt/cli/options.h).
 #ifndef RT_NO_GLTF  // built without tinygltf (mk/convert.mk): glTF is refused with an error
 #define TINYGLTF_IMPLEMENTATION
@@ -23,8 +23,15 @@ namespace rtgltf {
 #ifndef RT_NO_GLTF
 namespace {
 
-// Images are skipped, not decoded: the importer warns about the textures that use them.
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+// Images are not decoded here: the import reads the palettes it can use (gltf_palette.h)
+// from their bufferViews, checking their ranges, and warns about other textures. A data
+// URI's bytes, which are nowhere else, are kept as they are.
+bool keep_image(tinygltf::Image* image, const int, std::string*, std::string*, int, int, const unsigned char* bytes,
+                int size, void*) {
+    if (image->bufferView < 0 && bytes && size > 0) {
+        image->image.assign(bytes, bytes + size);
+        image->as_is = true;
+    }
     return true;
 }
 
@@ -95,7 +102,7 @@ bool split_glb(const std::string& bytes, std::string& json, std::string& bin) {
 void parse(const std::string& file_bytes, const std::string& path, const std::string& base_dir, tinygltf::Model& model,
            std::vector<std::string>& warnings) {
     tinygltf::TinyGLTF gltf;
-    gltf.SetImageLoader(skip_image, nullptr);
+    gltf.SetImageLoader(keep_image, nullptr);
     std::string err, warn;
     const bool binary = file_bytes.size() >= 4 && file_bytes.compare(0, 4, "glTF") == 0;
     if (binary && file_bytes.size() >= 12) {  // the GLB header: magic, version, total length

@@ -34,7 +34,7 @@ struct Error : std::runtime_error {
 
 // Parses a glTF (JSON, or .glb when `bytes` starts with its magic) read from `path`, its
 // external buffers read from `base_dir`. Throws Error, one line naming `path` and, where
-// known, the element (/buffers/0). Images are not read (the format has no textures);
+// known, the element (/buffers/0). Images are not decoded (a data URI's bytes are kept);
 // `warnings` gets tinygltf's warnings.
 void parse(const std::string& bytes, const std::string& path, const std::string& base_dir, tinygltf::Model& model,
            std::vector<std::string>& warnings);

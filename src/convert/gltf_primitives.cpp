@@ -71,29 +71,18 @@ void weld(GltfTriangles& g, const std::vector<double>& normals) {
 
 }  // namespace
 
-std::vector<GltfTriangles> connected_parts(const GltfTriangles& g) {
-    const size_t n = g.positions.size() / 3;
-    std::vector<uint32_t> root(n);
-    for (size_t i = 0; i < n; ++i) root[i] = uint32_t(i);
-    auto find = [&](uint32_t v) {
-        while (root[v] != v) v = root[v] = root[root[v]];
-        return v;
-    };
-    for (size_t t = 0; t + 2 < g.indices.size(); t += 3)
-        for (size_t k = 1; k < 3; ++k) root[find(g.indices[t + k])] = find(g.indices[t]);
-    std::vector<GltfTriangles> parts;
-    std::vector<uint32_t> local(n, UINT32_MAX), part_of_root(n, UINT32_MAX);
+std::vector<GltfTriangles> split_triangles(const GltfTriangles& g, const std::vector<uint32_t>& group, size_t groups) {
+    std::vector<GltfTriangles> parts(groups);
+    std::vector<uint32_t> local(g.positions.size() / 3);
+    std::vector<uint32_t> owner(local.size(), UINT32_MAX);  // the group whose `local` numbers vertex v
+    for (GltfTriangles& part : parts) part.smooth = g.smooth;
     for (size_t t = 0; t + 2 < g.indices.size(); t += 3) {
-        uint32_t& p = part_of_root[find(g.indices[t])];
-        if (p == UINT32_MAX) {
-            p = uint32_t(parts.size());
-            parts.emplace_back();
-            parts.back().smooth = g.smooth;
-        }
+        const uint32_t p = group[t / 3];
         GltfTriangles& part = parts[p];
         for (size_t k = 0; k < 3; ++k) {
             const uint32_t v = g.indices[t + k];
-            if (local[v] == UINT32_MAX) {
+            if (owner[v] != p) {
+                owner[v] = p;
                 local[v] = uint32_t(part.positions.size() / 3);
                 for (size_t a = 0; a < 3; ++a) {
                     const double x = g.positions[3 * v + a];
@@ -106,6 +95,26 @@ std::vector<GltfTriangles> connected_parts(const GltfTriangles& g) {
         }
     }
     return parts;
+}
+
+std::vector<GltfTriangles> connected_parts(const GltfTriangles& g) {
+    const size_t n = g.positions.size() / 3;
+    std::vector<uint32_t> root(n);
+    for (size_t i = 0; i < n; ++i) root[i] = uint32_t(i);
+    auto find = [&](uint32_t v) {
+        while (root[v] != v) v = root[v] = root[root[v]];
+        return v;
+    };
+    for (size_t t = 0; t + 2 < g.indices.size(); t += 3)
+        for (size_t k = 1; k < 3; ++k) root[find(g.indices[t + k])] = find(g.indices[t]);
+    std::vector<uint32_t> part_of_root(n, UINT32_MAX), group;
+    uint32_t parts = 0;
+    for (size_t t = 0; t + 2 < g.indices.size(); t += 3) {
+        uint32_t& p = part_of_root[find(g.indices[t])];
+        if (p == UINT32_MAX) p = parts++;
+        group.push_back(p);
+    }
+    return split_triangles(g, group, parts);
 }
 
 void GltfPrimitives::fail(const std::string& element, const std::string& what) const {
@@ -231,6 +240,21 @@ std::vector<uint32_t> GltfPrimitives::indices(int index, size_t vertices, const 
     return out;
 }
 
+std::vector<uint32_t> GltfPrimitives::corners(int m, int p) const {
+    const tinygltf::Primitive& prim = model_.meshes[size_t(m)].primitives[size_t(p)];
+    const std::string where = "/meshes/" + std::to_string(m) + "/primitives/" + std::to_string(p);
+    const int pos = prim.attributes.at("POSITION");
+    const size_t n = view(pos, -1, TINYGLTF_TYPE_VEC3, where + "/attributes/POSITION").count;
+    std::vector<uint32_t> out;
+    if (prim.indices >= 0) {
+        out = indices(prim.indices, n, where);
+    } else {
+        for (uint32_t i = 0; i < n; ++i) out.push_back(i);
+    }
+    out.resize(out.size() - out.size() % 3);
+    return out;
+}
+
 const GltfTriangles* GltfPrimitives::get(int m, int p) {
     const tinygltf::Primitive& prim = model_.meshes[size_t(m)].primitives[size_t(p)];
     const std::string where = "/meshes/" + std::to_string(m) + "/primitives/" + std::to_string(p);
@@ -250,16 +274,10 @@ const GltfTriangles* GltfPrimitives::get(int m, int p) {
     GltfTriangles g;
     g.positions = numbers(pos->second, TINYGLTF_TYPE_VEC3, where + "/attributes/POSITION");
     const size_t n = g.positions.size() / 3;
-    if (prim.indices >= 0) {
-        g.indices = indices(prim.indices, n, where);
-    } else {
-        for (uint32_t i = 0; i < n; ++i) g.indices.push_back(i);
-    }
-    if (g.indices.size() % 3) {
-        warn(where + ": " + std::to_string(g.indices.size()) + " indices, not a multiple of 3: the last " +
-             std::to_string(g.indices.size() % 3) + " left out");
-        g.indices.resize(g.indices.size() - g.indices.size() % 3);
-    }
+    g.indices = corners(m, p);
+    if (const size_t all = prim.indices >= 0 ? model_.accessors[size_t(prim.indices)].count : n; all % 3)
+        warn(where + ": " + std::to_string(all) + " indices, not a multiple of 3: the last " + std::to_string(all % 3) +
+             " left out");
     const json extras = ours_in(model_.meshes[size_t(m)].extras);
     if (const auto nrm = prim.attributes.find("NORMAL"); nrm != prim.attributes.end()) {
         const std::vector<double> normals = numbers(nrm->second, TINYGLTF_TYPE_VEC3, where + "/attributes/NORMAL");

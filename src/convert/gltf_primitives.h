@@ -41,6 +41,9 @@ struct GltfTriangles {
 // The parts of `g` that share no vertex, each with its own vertices (in the order of their
 // first use) and box: several where a pipeline joined meshes of one material into one.
 std::vector<GltfTriangles> connected_parts(const GltfTriangles& g);
+// The triangles of `g` in `groups` lists, triangle t in list group[t], each with its own
+// vertices (in the order of their first use) and box.
+std::vector<GltfTriangles> split_triangles(const GltfTriangles& g, const std::vector<uint32_t>& group, size_t groups);
 
 class GltfPrimitives {
 public:
@@ -58,6 +61,10 @@ public:
     // element: floats, or KHR_mesh_quantization's integers (normalised or not) dequantised.
     // `where` names its user. Throws rt::InputError naming the accessor.
     std::vector<double> numbers(int index, int type, const std::string& where) const;
+
+    // The vertices of primitive p's corners as the file numbers them (its indices, or 0, 1, 2,
+    // ... without), whole triangles: triangle t of get(m, p) is corners 3t to 3t + 2.
+    std::vector<uint32_t> corners(int m, int p) const;
 
 private:
     [[noreturn]] void fail(const std::string& element, const std::string& what) const;

@@ -29,10 +29,11 @@ NPM = os.path.join(REPO, "build", "npm")
 OUT = os.path.join(REPO, "build", "gltf", "tools")
 VARIANTS = ["quantize", "meshopt", "draco", "optimize"]
 # The scenes make check-gltf puts through the pipelines: flat and instanced meshes, glass and
-# spheres, transformations, metals, an XML scene; each with fewer than 5 materials, where
-# optimize's palette step keeps the course's materials (docs/gltf.md).
+# spheres, transformations, metals, an XML scene; cornellbox's 5 materials, which optimize's
+# palette step merges, and mirror_room's planes, which its join merges (docs/gltf.md).
 PIPELINE_SCENES = ["hw1/bunny.json", "hw1/scienceTree_glass.json", "hw2/simple_transform.json",
-                   "hw2/metal_glass_plates.json", "xml2021/two_spheres.xml"]
+                   "hw2/metal_glass_plates.json", "xml2021/two_spheres.xml", "hw1/cornellbox.json",
+                   "hw2/mirror_room.json"]
 
 
 def install_tools():
