@@ -83,8 +83,8 @@ const char* kScene = R"({"Scene": {
     "Plane": {"_id": "1", "Material": "5", "Point": "6", "Normal": "0 1 0"}}}})";
 
 // The keys of the export's extras that hold assignment 3's values (src/convert/gltf_extras.h).
-const std::vector<std::string> kExtrasKeys = {"numSamples", "focusDistance", "apertureSize",
-                                              "motionBlur", "roughness",     "areaLight"};
+const std::vector<std::string> kExtrasKeys = {"numSamples", "focusDistance", "apertureSize", "motionBlur",
+                                              "roughness",  "areaLight",     "areaLights"};
 
 json read_json(const std::string& path) { return json::parse(read_text(path)); }
 

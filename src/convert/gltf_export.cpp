@@ -204,9 +204,10 @@ public:
         add_cameras();
         add_lights();
         add_area_lights();
-        // The settings, and every material and plane once more: pipelines that merge
-        // materials (glTF Transform's palette) or meshes (its join) keep one element's extras
-        // of those they merge, and the scene's (docs/gltf.md).
+        // The settings, and every material, plane and area light once more: pipelines that
+        // merge materials (glTF Transform's palette) or meshes (its join) keep one element's
+        // extras of those they merge, and those that prune nodes without content (its prune)
+        // drop the area lights' nodes; the scene's extras stay (docs/gltf.md).
         json extras = {{"backgroundColor", arr(scene_.background)},
                        {"shadowRayEpsilon", double(scene_.shadow_ray_epsilon)},
                        {"intersectionTestEpsilon", double(scene_.intersection_test_epsilon)},
@@ -214,11 +215,51 @@ public:
                        {"ambientLight", arr(scene_.ambient_light)},
                        {"materials", material_extras_}};
         if (!plane_extras_.empty()) extras["planes"] = plane_extras_;
+        if (!area_light_extras_.empty()) extras["areaLights"] = area_light_extras_;
+        if (const json boxes = material_boxes(); !boxes.empty()) extras["materialBoxes"] = boxes;
         model_.scenes[0].extras = ours_as_extras(extras);
         for (size_t i = 0; i < model_.nodes.size(); ++i) model_.scenes[0].nodes.push_back(int(i));
     }
 
 private:
+    // The world boxes of the objects drawn with each material that glTF cannot tell from
+    // another (the same PBR values, other course values): a pipeline that merges materials
+    // (glTF Transform's palette) merges those into one texel, and the import tells their
+    // triangles apart by where they are. {"index": [[lo x y z, hi x y z], ...]}.
+    json material_boxes() const {
+        std::vector<bool> twin(scene_.materials.size(), false);
+        for (size_t i = 0; i < scene_.materials.size(); ++i)
+            for (size_t j = i + 1; j < scene_.materials.size(); ++j)
+                if (same_pbr(pbr_of(scene_.materials[i]), pbr_of(scene_.materials[j])) &&
+                    material_extras_[i] != material_extras_[j])
+                    twin[i] = twin[j] = true;
+        json out = json::object();
+        // The box of `points` (or of [lo, hi] when `points` is null), moved by `to_world`.
+        auto add = [&](uint32_t material, const std::vector<Vec3>* points, Vec3 lo, Vec3 hi, const Affine& to_world) {
+            if (material >= twin.size() || !twin[material]) return;
+            if (points) {
+                if (points->empty()) return;
+                lo = hi = (*points)[0];
+                for (const Vec3& q : *points) lo = vmin(lo, q), hi = vmax(hi, q);
+            }
+            Vec3 wlo = to_world.point(lo), whi = wlo;
+            for (int c = 1; c < 8; ++c) {
+                const Vec3 q = to_world.point({c & 1 ? hi.x : lo.x, c & 2 ? hi.y : lo.y, c & 4 ? hi.z : lo.z});
+                wlo = vmin(wlo, q), whi = vmax(whi, q);
+            }
+            out[std::to_string(material)].push_back(json::array({wlo.x, wlo.y, wlo.z, whi.x, whi.y, whi.z}));
+        };
+        for (const MeshDesc& m : scene_.meshes)
+            if (!m.instanced) add(m.material, &m.positions, {}, {}, Affine{});
+        for (const InstanceDesc& d : scene_.all<InstanceDesc>())
+            add(d.material, &scene_.meshes.at(d.mesh).positions, {}, {}, d.transform);
+        for (const SphereDesc& d : scene_.all<SphereDesc>()) {
+            const Vec3 r{d.radius, d.radius, d.radius};
+            add(d.material, nullptr, d.center - r, d.center + r, d.transform);
+        }
+        return out;
+    }
+
     void add_materials() {
         bool transmission = false, ior = false, volume = false;
         for (const MaterialDesc& m : scene_.materials) {
@@ -413,6 +454,7 @@ private:
             n.rotation = rotation_to(normalize(l.normal));
             n.scale = {double(l.size), double(l.size), double(l.size)};
             n.extras = ours_as_extras({{"areaLight", extras_of(kAreaLightExtras, l)}});
+            area_light_extras_.push_back(extras_of(kAreaLightExtras, l));
             model_.nodes.push_back(std::move(n));
         }
         if (!scene_.area_lights.empty())
@@ -426,7 +468,8 @@ private:
     ConvertResult& result_;
     BufferWriter buffers_;
     std::vector<Geometry> geometries_;
-    json material_extras_ = json::array(), plane_extras_ = json::array();  // for the scene's extras
+    json material_extras_ = json::array(), plane_extras_ = json::array(),
+         area_light_extras_ = json::array();  // for the scene's extras
     std::map<std::pair<size_t, uint32_t>, int> meshes_;
 };
 

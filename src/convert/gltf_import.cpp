@@ -202,6 +202,23 @@ private:
         visited_.assign(model_.nodes.size(), false);
         locals_.assign(model_.nodes.size(), Affine{});
         for (int r : roots) visit(r, Affine{}, {}, "/scenes/nodes");
+        // Area lights whose nodes a pipeline pruned (glTF Transform's prune drops nodes
+        // without content): the export's, from the scene's extras, when no node has one.
+        if (area_lights_.empty() && scene_extras_.is_object() && scene_extras_.contains("areaLights")) {
+            const json& list = scene_extras_["areaLights"];
+            const std::string where = extras_at(scene_at_) + "/areaLights";
+            if (!list.is_array()) throw InputError(where + ": must be an array");
+            for (size_t i = 0; i < list.size(); ++i) {
+                if (!list[i].is_object()) throw InputError(where + "/" + std::to_string(i) + ": must be an object");
+                ojson o = ojson::object();
+                o["_id"] = std::to_string(area_lights_.size() + 1);
+                read_extras(kAreaLightExtras, list[i], where + "/" + std::to_string(i), true, o);
+                out_.notes.push_back("area light " + o["_id"].get<std::string>() +
+                                     ": the exported values, from the scene's extras (no node holds it)");
+                extent(list[i]["position"].get<V3>());
+                area_lights_.push_back(o);
+            }
+        }
     }
 
     // `chain`: the nodes above (and with) this one whose matrices are not the identity,
@@ -313,7 +330,7 @@ private:
             for (int c = 0; c < 8; ++c)  // the corners of its box, moved
                 extent(apply(
                     world, {(c & 1 ? g->hi : g->lo)[0], (c & 2 ? g->hi : g->lo)[1], (c & 4 ? g->hi : g->lo)[2]}, true));
-            for (const Piece& piece : pieces(m, int(p), *g)) {
+            for (const Piece& piece : pieces(m, int(p), *g, world)) {
                 if (mesh.primitives.size() == 1 &&
                     as_shape(*piece.triangles, *g, extras, world, nodes, piece.material, own, np))
                     continue;
@@ -329,14 +346,15 @@ private:
 
     // The triangles of primitive p of mesh m (read as `g`), by material: one piece, or a
     // piece per palette texel (gltf_palette.h).
-    const std::vector<Piece>& pieces(int m, int p, const GltfTriangles& g) {
+    const std::vector<Piece>& pieces(int m, int p, const GltfTriangles& g, const Affine& world) {
         const int material = model_.meshes[size_t(m)].primitives[size_t(p)].material;
         const std::string ref =
             material_ref(material, "/meshes/" + std::to_string(m) + "/primitives/" + std::to_string(p));
         const auto key = std::make_pair(&g, material);
         if (const auto it = pieces_.find(key); it != pieces_.end()) return it->second;
         std::vector<Piece>& out = pieces_[key];
-        const std::vector<PaletteTexel> texels = palettes_.triangle_texels(m, p);
+        std::vector<PaletteTexel> texels = palettes_.triangle_texels(m, p);
+        if (texels.size() == g.indices.size() / 3 && uses_[size_t(m)] == 1) told_apart(texels, g, world);
         if (texels.size() != g.indices.size() / 3) {
             out.push_back({&g, ref});
             return out;
@@ -362,6 +380,76 @@ private:
             out.push_back({&made_.back(), refs[i]});
         }
         return out;
+    }
+
+    // Palette texels that several exported materials tie for (materials that differ only
+    // where glTF has no place): the triangles of each part (sharing no vertex with the rest)
+    // and texel take the one of them whose objects' boxes (the scene's extras,
+    // "materialBoxes", in world space) the smallest contains them all, to within the 14 bits
+    // glTF Transform keeps of the primitive's extent; where none does (a pipeline welded
+    // objects together), each triangle so. For a primitive shown once (the boxes are the
+    // world's).
+    void told_apart(std::vector<PaletteTexel>& texels, const GltfTriangles& g, const Affine& world) {
+        const json boxes = scene_extras_.is_object() ? scene_extras_.value("materialBoxes", json()) : json();
+        if (!boxes.is_object()) return;
+        const std::vector<json> exported = exported_materials(scene_extras_);
+        std::map<PaletteTexel, std::vector<int>> tied;  // per texel: the tied materials with boxes
+        for (const PaletteTexel& t : texels) {
+            if (tied.count(t)) continue;
+            std::vector<json> listed = exported;
+            listed.push_back(ours_in(model_.materials[size_t(t.material)].extras));
+            std::vector<int>& with_boxes = tied[t];
+            for (int k : texel_matches(model_, t, listed))
+                if (size_t(k) < exported.size() && boxes.value(std::to_string(k), json()).is_array())
+                    with_boxes.push_back(k);
+            if (with_boxes.size() < 2) with_boxes.clear();
+        }
+        const GltfTriangles at = moved(g, world);
+        const double tolerance =
+            2e-4 * std::max({at.hi[0] - at.lo[0], at.hi[1] - at.lo[1], at.hi[2] - at.lo[2], 1e-30});
+        // The tied material whose smallest box holds `triangles` (indices into texels), or -1.
+        auto holder = [&](const std::vector<int>& candidates, const std::vector<size_t>& triangles) {
+            V3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+            for (size_t t : triangles)
+                for (size_t v = 0; v < 3; ++v)
+                    for (size_t c = 0; c < 3; ++c) {
+                        const double x = at.positions[3 * size_t(at.indices[3 * t + v]) + c];
+                        lo[c] = std::min(lo[c], x);
+                        hi[c] = std::max(hi[c], x);
+                    }
+            double smallest = HUGE_VAL;
+            int found = -1;
+            for (int k : candidates)
+                for (const json& b : boxes[std::to_string(k)]) {
+                    if (!b.is_array() || b.size() != 6) continue;
+                    bool inside = true;
+                    double size = 0;
+                    for (size_t c = 0; c < 3; ++c) {
+                        if (!b[c].is_number() || !b[c + 3].is_number()) inside = false;
+                        if (!inside) break;
+                        size += b[c + 3].get<double>() - b[c].get<double>();
+                        inside = lo[c] >= b[c].get<double>() - tolerance && hi[c] <= b[c + 3].get<double>() + tolerance;
+                    }
+                    if (inside && size < smallest) {
+                        smallest = size;
+                        found = k;
+                    }
+                }
+            return found;
+        };
+        size_t parts = 0;
+        const std::vector<uint32_t> part = part_of_triangles(g, parts);
+        std::map<std::pair<uint32_t, PaletteTexel>, std::vector<size_t>> groups;
+        for (size_t i = 0; i < texels.size(); ++i)
+            if (!tied[texels[i]].empty()) groups[{part[i], texels[i]}].push_back(i);
+        for (const auto& [key, triangles] : groups) {
+            const std::vector<int>& candidates = tied[key.second];
+            if (const int k = holder(candidates, triangles); k >= 0) {
+                for (size_t t : triangles) texels[t].listed = k;
+                continue;
+            }
+            for (size_t t : triangles) texels[t].listed = holder(candidates, {t});
+        }
     }
 
     // `g` without the parts (sharing no vertex with the rest) that are the export's planes:

@@ -48,6 +48,13 @@ inline bool colour(const json& j, V3& out) { return vec3(j, out, 0); }
 // the glTF material's factors times the texel. `scene_extras`: the "ceng795" extras of the
 // scene converted, `scene_at` its pointer ("/scenes/0").
 struct PaletteTexel;
+// The materials the export kept in the scene's "ceng795" extras ("materials"), in order.
+std::vector<json> exported_materials(const json& scene_extras);
+// The materials of `listed` (the exported ones, then the texel's glTF material's own
+// extras) whose PBR values the table maps to the texel's (to 1 level of its 8 bits) and to
+// the material's other factors: the closest, several where they tie (materials that differ
+// only where glTF has no place, as AmbientReflectance), in the order of `listed`.
+std::vector<int> texel_matches(const tinygltf::Model& model, const PaletteTexel& t, const std::vector<json>& listed);
 ojson import_materials(const tinygltf::Model& model, const std::string& path, bool with_default,
                        const std::vector<PaletteTexel>& texels, const json& scene_extras, const std::string& scene_at,
                        SceneImport& out);

@@ -54,17 +54,20 @@ PbrMaterial pbr(const tinygltf::Material& m, const std::string& mp, const Warn& 
     return p;
 }
 
-// The course material a palette texel stands for: of the exported materials (`listed`, the
-// scene's extras, then the glTF material's own), the one whose PBR values the table maps to
-// the texel's (to the 8 bits a texel keeps: 1 level) and to the material's other factors.
-// Its index in `listed`, or -1 (then `found` is the table's material of the texel's values).
-int material_of_texel(const PbrMaterial& factors, const PaletteTexel& t, const std::vector<json>& listed,
-                      MaterialDesc& found) {
-    PbrMaterial p = factors;
+// The PBR values of a material's `factors` times its palette texel's.
+PbrMaterial texel_pbr(PbrMaterial p, const PaletteTexel& t) {
     for (size_t k = 0; k < 3; ++k)
         if (t.base[k] >= 0) p.base[k] *= srgb_to_linear(t.base[k]);
     if (t.roughness >= 0) p.roughness *= t.roughness / 255.0;
     if (t.metallic >= 0) p.metallic *= t.metallic / 255.0;
+    return p;
+}
+
+}  // namespace
+
+std::vector<int> texel_matches(const tinygltf::Model& model, const PaletteTexel& t, const std::vector<json>& listed) {
+    const PbrMaterial factors = pbr(model.materials[size_t(t.material)], "", [](const std::string&) {});
+    const PbrMaterial p = texel_pbr(factors, t);
     // Whether `want` (linear, before the factor) is what the 8-bit `texel` holds.
     auto holds = [](double want, double factor, int texel, bool srgb) {
         if (texel < 0) return true;
@@ -73,7 +76,7 @@ int material_of_texel(const PbrMaterial& factors, const PaletteTexel& t, const s
         return std::fabs((srgb ? linear_to_srgb(v) : v) * 255 - texel) <= 1;
     };
     double best = HUGE_VAL;
-    int index = -1;
+    std::vector<int> out;
     for (size_t i = 0; i < listed.size(); ++i) {
         MaterialDesc d;
         if (!material_from_extras(listed[i], d)) continue;
@@ -90,17 +93,22 @@ int material_of_texel(const PbrMaterial& factors, const PaletteTexel& t, const s
         if (t.base[0] >= 0) std::copy(p.base, p.base + 3, q.base);
         if (t.roughness >= 0) q.roughness = p.roughness;
         if (t.metallic >= 0) q.metallic = p.metallic;
-        if (same_pbr(q, p) && distance < best) {
-            best = distance;
-            found = d;
-            index = int(i);
-        }
+        if (!same_pbr(q, p) || distance > best) continue;
+        if (distance < best) out.clear();
+        best = distance;
+        out.push_back(int(i));
     }
-    if (index < 0) found = material_of(p);
-    return index;
+    return out;
 }
 
-}  // namespace
+namespace {}  // namespace
+
+std::vector<json> exported_materials(const json& scene_extras) {
+    std::vector<json> out;
+    if (scene_extras.is_object() && scene_extras.value("materials", json()).is_array())
+        for (const json& j : scene_extras["materials"]) out.push_back(j);
+    return out;
+}
 
 ojson import_materials(const tinygltf::Model& model, const std::string& path, bool with_default,
                        const std::vector<PaletteTexel>& texels, const json& scene_extras, const std::string& scene_at,
@@ -130,17 +138,18 @@ ojson import_materials(const tinygltf::Model& model, const std::string& path, bo
         out.notes.push_back("material " + std::to_string(model.materials.size() + 1) +
                             ": default grey, for primitives without a material");
     }
-    std::vector<json> exported;
-    if (scene_extras.is_object() && scene_extras.value("materials", json()).is_array())
-        for (const json& j : scene_extras["materials"]) exported.push_back(j);
+    const std::vector<json> exported = exported_materials(scene_extras);
     const Warn quiet = [](const std::string&) {};  // said of the material already
     for (size_t k = 0; k < texels.size(); ++k) {
         const PaletteTexel& t = texels[k];
         const tinygltf::Material& m = model.materials[size_t(t.material)];
         std::vector<json> listed = exported;
         listed.push_back(ours_in(m.extras));
+        const std::vector<int> matches = texel_matches(model, t, listed);
+        const int found = t.listed >= 0 ? t.listed : matches.empty() ? -1 : matches[0];
         MaterialDesc d;
-        const int found = material_of_texel(pbr(m, "", quiet), t, listed, d);
+        if (found < 0 || !material_from_extras(listed[size_t(found)], d))
+            d = material_of(texel_pbr(pbr(m, "", quiet), t));
         const bool from_extras = found >= 0;
         const size_t id = model.materials.size() + 2 + k;
         ojson entry = material_entry(d, id);

@@ -26,8 +26,12 @@ struct PaletteTexel {
     int material = -1;  // the glTF material
     std::array<int, 3> base{-1, -1, -1};
     int roughness = -1, metallic = -1;
+    // The exported material (texel_matches' `listed`) of its triangles where several tie and
+    // their places told them apart; -1: the first that matches.
+    int listed = -1;
     bool operator<(const PaletteTexel& o) const {
-        return std::tie(material, base, roughness, metallic) < std::tie(o.material, o.base, o.roughness, o.metallic);
+        return std::tie(material, base, roughness, metallic, listed) <
+               std::tie(o.material, o.base, o.roughness, o.metallic, o.listed);
     }
 };
 

@@ -98,6 +98,12 @@ std::vector<GltfTriangles> split_triangles(const GltfTriangles& g, const std::ve
 }
 
 std::vector<GltfTriangles> connected_parts(const GltfTriangles& g) {
+    size_t parts = 0;
+    const std::vector<uint32_t> group = part_of_triangles(g, parts);
+    return split_triangles(g, group, parts);
+}
+
+std::vector<uint32_t> part_of_triangles(const GltfTriangles& g, size_t& parts) {
     const size_t n = g.positions.size() / 3;
     std::vector<uint32_t> root(n);
     for (size_t i = 0; i < n; ++i) root[i] = uint32_t(i);
@@ -108,13 +114,13 @@ std::vector<GltfTriangles> connected_parts(const GltfTriangles& g) {
     for (size_t t = 0; t + 2 < g.indices.size(); t += 3)
         for (size_t k = 1; k < 3; ++k) root[find(g.indices[t + k])] = find(g.indices[t]);
     std::vector<uint32_t> part_of_root(n, UINT32_MAX), group;
-    uint32_t parts = 0;
+    parts = 0;
     for (size_t t = 0; t + 2 < g.indices.size(); t += 3) {
         uint32_t& p = part_of_root[find(g.indices[t])];
-        if (p == UINT32_MAX) p = parts++;
+        if (p == UINT32_MAX) p = uint32_t(parts++);
         group.push_back(p);
     }
-    return split_triangles(g, group, parts);
+    return group;
 }
 
 void GltfPrimitives::fail(const std::string& element, const std::string& what) const {

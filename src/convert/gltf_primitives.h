@@ -41,6 +41,9 @@ struct GltfTriangles {
 // The parts of `g` that share no vertex, each with its own vertices (in the order of their
 // first use) and box: several where a pipeline joined meshes of one material into one.
 std::vector<GltfTriangles> connected_parts(const GltfTriangles& g);
+// Which of those parts each triangle is in (numbered in the order of first use); `parts`
+// gets their count.
+std::vector<uint32_t> part_of_triangles(const GltfTriangles& g, size_t& parts);
 // The triangles of `g` in `groups` lists, triangle t in list group[t], each with its own
 // vertices (in the order of their first use) and box.
 std::vector<GltfTriangles> split_triangles(const GltfTriangles& g, const std::vector<uint32_t>& group, size_t groups);
