@@ -232,6 +232,63 @@ TEST(GltfJoined, SpheresJoinedIntoOneMeshAreSpheresAgain) {
     EXPECT_EQ(world_triangles(bent.scene).size(), 40u);
 }
 
+TEST(GltfJoined, ABoxJoinedWithASphereStaysAMesh) {
+    // A box's 8 corners lie on a sphere; its faces do not: joined with an exported sphere's
+    // mesh (its extras a sphere's), the box stays triangles.
+    std::vector<float> p;
+    for (int c = 0; c < 8; ++c) p.insert(p.end(), {c & 1 ? 1.f : -1.f, c & 2 ? 1.f : -1.f, c & 4 ? 1.f : -1.f});
+    const std::vector<uint32_t> idx = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
+                                       2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
+    GltfFile f;
+    f.mesh(p, idx);
+    f.j["meshes"][0]["extras"] = {{"ceng795", {{"sphere", {{"center", {5, 0, 0}}, {"radius", 1}}}}}};
+    f.node({{"mesh", 0}, {"translation", {0, 0, -3}}});
+    TempDir tmp;
+    const Imported im = import(tmp, f.write(tmp));
+    EXPECT_TRUE(im.scene.all<rt::SphereDesc>().empty());
+    EXPECT_EQ(world_triangles(im.scene).size(), 12u);
+}
+
+TEST(GltfJoined, AFlattenedEllipsoidIsASphereUnderItsMapAgain) {
+    // optimize's flatten moves a sphere under a non-uniform scaling (an ellipsoid) into world
+    // space: a UV sphere of 16 segments under `map`, written in world space with a sphere's
+    // extras, comes back as a sphere whose transformation puts it on the same ellipsoid.
+    const rt::Affine map =
+        rt::Affine::translation(1, 2, -6) * rt::Affine::rotation(30, 0, 0, 1) * rt::Affine::scaling(1, 2, 0.5);
+    std::vector<float> p;
+    std::vector<uint32_t> idx;
+    const int n = 16;
+    for (int i = 0; i <= n / 2; ++i)
+        for (int j = 0; j < n; ++j) {
+            const double th = M_PI * i / (n / 2), ph = 2 * M_PI * j / n;
+            const rt::Vec3 q = map.point({std::sin(th) * std::cos(ph), std::cos(th), std::sin(th) * std::sin(ph)});
+            p.insert(p.end(), {float(q.x), float(q.y), float(q.z)});
+        }
+    for (int i = 0; i < n / 2; ++i)
+        for (int j = 0; j < n; ++j) {
+            const uint32_t a = uint32_t(i * n + j), b = uint32_t(i * n + (j + 1) % n);
+            idx.insert(idx.end(), {a, a + uint32_t(n), b, b, a + uint32_t(n), b + uint32_t(n)});
+        }
+    GltfFile f;
+    f.mesh(p, idx);
+    f.j["meshes"][0]["extras"] = {{"ceng795", {{"sphere", {{"center", {0, 0, 0}}, {"radius", 1}}}}}};
+    f.node({{"mesh", 0}});
+    TempDir tmp;
+    const Imported im = import(tmp, f.write(tmp));
+    const auto spheres = im.scene.all<rt::SphereDesc>();
+    ASSERT_EQ(spheres.size(), 1u);
+    EXPECT_TRUE(world_triangles(im.scene).empty());
+    // Points of the imported sphere, mapped back by the inverse of `map`, are on the unit
+    // sphere (to the floats the vertices were written in).
+    const rt::Affine back = map.inverse();
+    for (int k = 0; k < 50; ++k) {
+        const double th = 0.37 * k, ph = 1.13 * k;
+        const rt::Vec3 u{std::sin(th) * std::cos(ph), std::cos(th), std::sin(th) * std::sin(ph)};
+        const rt::Vec3 q = spheres[0].transform.point(spheres[0].center + u * spheres[0].radius);
+        EXPECT_NEAR(double(rt::length(back.point(q))), 1.0, 1e-5) << k;
+    }
+}
+
 TEST(GltfQuantized, ANonNumericComponentTypeIsRefusedNamingTheAccessor) {
     TempDir tmp;
     GltfFile f;

@@ -18,6 +18,7 @@
 #include "gltf_io.h"
 #include "gltf_palette.h"
 #include "gltf_primitives.h"
+#include "gltf_shapes.h"
 #include "rt/convert/gltf_materials.h"
 #include "rt/core/affine.h"
 #include "rt/core/count_text.h"
@@ -547,67 +548,6 @@ private:
         }
     }
 
-    // `g` with its vertices moved by `m`, and its box.
-    static GltfTriangles moved(const GltfTriangles& g, const Affine& m) {
-        GltfTriangles out = g;
-        out.lo = {HUGE_VAL, HUGE_VAL, HUGE_VAL};
-        out.hi = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-        for (size_t i = 0; i < g.positions.size(); i += 3) {
-            const V3 q = apply(m, {g.positions[i], g.positions[i + 1], g.positions[i + 2]}, true);
-            for (size_t k = 0; k < 3; ++k) {
-                out.positions[i + k] = q[k];
-                out.lo[k] = std::min(out.lo[k], q[k]);
-                out.hi[k] = std::max(out.hi[k], q[k]);
-            }
-        }
-        return out;
-    }
-
-    // Whether every vertex of `g` is within `tolerance` x r of the sphere (c, r).
-    static bool on_sphere(const GltfTriangles& g, const V3& c, double r, double tolerance) {
-        for (size_t i = 0; i < g.positions.size(); i += 3)
-            if (std::fabs(norm(sub({g.positions[i], g.positions[i + 1], g.positions[i + 2]}, c)) - r) > tolerance * r)
-                return false;
-        return true;
-    }
-
-    // Whether every vertex of `g` is within `tolerance` x its distance from p (at least 1)
-    // of the plane through p of normal `nrm`.
-    static bool on_plane(const GltfTriangles& g, const V3& p, const V3& nrm, double tolerance) {
-        const double len = norm(nrm);
-        double size = 1;
-        for (size_t i = 0; i < g.positions.size(); i += 3)
-            size = std::max(size, norm(sub({g.positions[i], g.positions[i + 1], g.positions[i + 2]}, p)));
-        for (size_t i = 0; i < g.positions.size(); i += 3) {
-            const V3 d = sub({g.positions[i], g.positions[i + 1], g.positions[i + 2]}, p);
-            if (std::fabs(d[0] * nrm[0] + d[1] * nrm[1] + d[2] * nrm[2]) / len > tolerance * size) return false;
-        }
-        return true;
-    }
-
-    // The spheres of an exported sphere's mesh that a pipeline quantised (KHR_mesh_quantization:
-    // its positions the sphere's moved and scaled uniformly, the node undoing it) and perhaps
-    // joined with others of its material (optimize's join): each part that shares no vertex
-    // with the others, the sphere about its box's centre that its vertices lie on, to within
-    // the 14 bits glTF Transform keeps of the mesh's extent (2e-4 of it; 1.1e-4 is half a
-    // step; `extent`: half the largest side of the box of the primitive `g` was split from,
-    // whose steps they are). None unless every part is one.
-    static std::vector<std::pair<V3, double>> quantised_spheres(const GltfTriangles& g, double extent) {
-        std::vector<std::pair<V3, double>> out;
-        for (const GltfTriangles& part : connected_parts(g)) {
-            const size_t n = part.positions.size() / 3;
-            const V3 c = {(part.lo[0] + part.hi[0]) / 2, (part.lo[1] + part.hi[1]) / 2, (part.lo[2] + part.hi[2]) / 2};
-            double r = 0;
-            for (size_t i = 0; i < n; ++i)
-                r += norm(sub({part.positions[3 * i], part.positions[3 * i + 1], part.positions[3 * i + 2]}, c)) /
-                     double(n);
-            const double tolerance = 2e-4 * std::max(r, extent);
-            if (n < 4 || !(r > 10 * tolerance) || !on_sphere(part, c, r, tolerance / r)) return {};
-            out.push_back({c, r});
-        }
-        return out;
-    }
-
     // A tessellated sphere or plane of the export, back as itself while its vertices are
     // still on it (docs/gltf.md).
     bool as_shape(const GltfTriangles& g, const GltfTriangles& whole, const json& extras, const Affine& world,
@@ -628,29 +568,31 @@ private:
                 const double extent =
                     std::max({whole.hi[0] - whole.lo[0], whole.hi[1] - whole.lo[1], whole.hi[2] - whole.lo[2]}) / 2;
                 spheres = quantised_spheres(g, extent);
-                if (spheres.empty() && !world.is_identity()) {
+                if (spheres.empty()) {
                     // Joined under a node whose matrix is not a uniform scaling (optimize's
                     // flatten and join): spheres in world space, where a step is as long as
                     // the matrix's longest axis makes it.
                     double stretch = 0;
                     for (int k = 0; k < 3; ++k)
                         stretch = std::max(stretch, norm({world.m[0][k], world.m[1][k], world.m[2][k]}));
-                    spheres = quantised_spheres(moved(g, world), extent * stretch);
+                    const GltfTriangles at = moved(g, world);
+                    if (!world.is_identity()) spheres = quantised_spheres(at, extent * stretch);
                     in_world = true;
+                    // Spheres flattened from under a non-uniform scaling: ellipsoids, each a
+                    // unit sphere under the map onto it.
+                    if (spheres.empty()) {
+                        const std::vector<Affine> ellipsoids = quantised_ellipsoids(at, extent * stretch);
+                        for (const Affine& e : ellipsoids) {
+                            locals_.push_back(e);
+                            add_sphere({0, 0, 0}, 1, material, transformations({int(locals_.size() - 1)}), own);
+                        }
+                        return !ellipsoids.empty();
+                    }
                 }
             }
             if (spheres.empty()) return false;
-            for (const auto& [centre, radius] : spheres) {
-                ojson o = ojson::object();
-                o["_id"] = std::to_string(sphere_objects_.size() + 1);
-                o["Material"] = material;
-                add_vertex(centre);
-                o["Center"] = std::to_string(vertices_);
-                o["Radius"] = course_number(radius);
-                if (!nodes.empty() && !in_world) o["Transformations"] = transformations(nodes);
-                o.update(own);
-                sphere_objects_.push_back(o);
-            }
+            const std::string chain = in_world ? "" : transformations(nodes);
+            for (const auto& [centre, radius] : spheres) add_sphere(centre, radius, material, chain, own);
             return true;
         }
         if (extras.contains("plane") && n >= 3) {
@@ -684,6 +626,20 @@ private:
             return true;
         }
         return false;
+    }
+
+    // A Sphere under the Transformations `chain` (none: ""), with the keys `own` of its node.
+    void add_sphere(const V3& centre, double radius, const std::string& material, const std::string& chain,
+                    const ojson& own) {
+        ojson o = ojson::object();
+        o["_id"] = std::to_string(sphere_objects_.size() + 1);
+        o["Material"] = material;
+        add_vertex(centre);
+        o["Center"] = std::to_string(vertices_);
+        o["Radius"] = course_number(radius);
+        if (!chain.empty()) o["Transformations"] = chain;
+        o.update(own);
+        sphere_objects_.push_back(o);
     }
 
     // A Plane under the Transformations `chain` (none: ""); `own` the keys node `np` gives
