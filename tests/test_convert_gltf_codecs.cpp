@@ -119,17 +119,10 @@ TEST(GltfPipelineFiles, GltfTransformsOutputsImportAsTheOriginal) {
     }
 }
 
-// tests/fuzz/seeds/gltf/palette_optimize.glb: tests/gltf/palette_scene.json (seven materials,
-// two of them alike but for AmbientReflectance, three spheres, a plane sharing its material
-// with a mesh, an area light) exported with
-// --sphere-segments 16, then glTF Transform's optimize: its palette merges the six materials
-// into one, its join the spheres into one mesh and the plane into the mesh of its material.
-TEST(GltfPipelineFiles, OptimizesPaletteAndJoinComeBackAsTheScenesMaterialsSpheresAndPlane) {
-    const std::string dir = seeds();
-    ASSERT_FALSE(dir.empty()) << "tests/fuzz/seeds/gltf not found above " << fs::current_path();
-    TempDir tmp;
-    const rt::SceneDesc original = rt::load_scene(dir + "/../../../gltf/palette_scene.json");
-    const Imported back = import(tmp, dir + "/palette_optimize.glb");
+namespace {
+
+// What palette_scene.json's export through optimize must import as (below).
+void check_palette_scene(const rt::SceneDesc& original, const Imported& back) {
     auto eq = [](const rt::Vec3& a, const rt::Vec3& b) { return a.x == b.x && a.y == b.y && a.z == b.z; };
     auto same = [&](const rt::MaterialDesc& a, const rt::MaterialDesc& b) {
         return a.type == b.type && eq(a.ambient, b.ambient) && eq(a.diffuse, b.diffuse) && eq(a.specular, b.specular) &&
@@ -193,6 +186,26 @@ TEST(GltfPipelineFiles, OptimizesPaletteAndJoinComeBackAsTheScenesMaterialsSpher
     ASSERT_EQ(back.scene.area_lights.size(), 1u);
     EXPECT_TRUE(eq(back.scene.area_lights[0].position, original.area_lights[0].position));
     EXPECT_TRUE(eq(back.scene.area_lights[0].radiance, original.area_lights[0].radiance));
+}
+
+}  // namespace
+
+// tests/fuzz/seeds/gltf/palette_optimize.glb: tests/gltf/palette_scene.json (seven materials,
+// two of them alike but for AmbientReflectance, three spheres, a plane sharing its material
+// with a mesh, an area light) exported with --sphere-segments 16, then glTF Transform's
+// optimize: its palette merges the materials into one, its join the spheres into one mesh
+// and the plane into the mesh of its material, its prune drops the area light's node.
+// palette_optimize_nojoin.glb: the same with --join false, where spheres of one radius share
+// their POSITION but not their texture coordinates (their texels).
+TEST(GltfPipelineFiles, OptimizesPaletteAndJoinComeBackAsTheScenesMaterialsSpheresAndPlane) {
+    const std::string dir = seeds();
+    ASSERT_FALSE(dir.empty()) << "tests/fuzz/seeds/gltf not found above " << fs::current_path();
+    const rt::SceneDesc original = rt::load_scene(dir + "/../../../gltf/palette_scene.json");
+    for (const char* file : {"palette_optimize.glb", "palette_optimize_nojoin.glb"}) {
+        SCOPED_TRACE(file);
+        TempDir tmp;
+        check_palette_scene(original, import(tmp, dir + "/" + file));
+    }
 }
 
 #ifndef RT_NO_MESHOPT

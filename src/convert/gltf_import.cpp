@@ -351,7 +351,9 @@ private:
         const int material = model_.meshes[size_t(m)].primitives[size_t(p)].material;
         const std::string ref =
             material_ref(material, "/meshes/" + std::to_string(m) + "/primitives/" + std::to_string(p));
-        const auto key = std::make_pair(&g, material);
+        // Per primitive: primitives that share their POSITION and indices (one `g`) may have
+        // other texture coordinates, so other texels.
+        const auto key = std::make_pair(m, p);
         if (const auto it = pieces_.find(key); it != pieces_.end()) return it->second;
         std::vector<Piece>& out = pieces_[key];
         std::vector<PaletteTexel> texels = palettes_.triangle_texels(m, p);
@@ -602,10 +604,16 @@ private:
                 return false;
             const double len = norm(nrm);
             if (!(len > 0)) return false;
+            // Quantised (up to half a 14-bit step of the quad's size) with the node undoing
+            // it, still on the export's plane, which is in world space: that plane, exactly.
+            if (!on_plane(g, p, nrm, 1e-5) && !world.is_identity() && on_plane(moved(g, world), p, nrm, 2e-4)) {
+                add_plane(p, nrm, material, "", own, np);
+                return true;
+            }
             if (!on_plane(g, p, nrm, 1e-5)) {
-                // Quantised, its positions are the plane's moved and scaled uniformly, the
-                // node undoing it (as a sphere's): the plane of the extras' normal through
-                // their centroid, while they lie on it to within the 14 bits kept.
+                // Quantised, and its node moved since: the plane of the extras' normal
+                // through the vertices' centroid, while they lie on it to within the 14 bits
+                // kept, under the node's transformation.
                 p = {0, 0, 0};
                 for (size_t i = 0; i < n; ++i)
                     for (size_t k = 0; k < 3; ++k) p[k] += g.positions[3 * i + k] / double(n);
@@ -897,8 +905,8 @@ private:
     GltfPalettes palettes_{model_, primitives_};
     std::map<const GltfTriangles*, FirstUse> first_use_;
     // A primitive's triangles drawn with each material (one, or a palette's: gltf_palette.h),
-    // per triangle list and glTF material; triangles made here, at stable addresses.
-    std::map<std::pair<const GltfTriangles*, int>, std::vector<Piece>> pieces_;
+    // per primitive (mesh, index); triangles made here, at stable addresses.
+    std::map<std::pair<int, int>, std::vector<Piece>> pieces_;
     std::deque<GltfTriangles> made_;
     std::vector<PaletteTexel> texels_;  // the palette texels' materials, in _id order
     std::map<PaletteTexel, size_t> texel_index_;

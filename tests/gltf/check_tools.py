@@ -6,7 +6,8 @@ pins (npm ci; Node.js and npm from Debian).
   validator   every complete official scene (hw1, hw2, hw3, xml2021) exported as .gltf and as
               .glb, each file through the Khronos glTF Validator (tests/gltf/validate.js):
               0 errors and 0 warnings each (infos, such as an unused material, may stay).
-  pipelines   glTF Transform's quantize, meshopt, draco and optimize on the .glb of a few
+  pipelines   glTF Transform's quantize, meshopt, draco and optimize (also without its
+              simplify, and without its simplify and join) on the .glb of a few
               scenes (PIPELINE_SCENES; --all: every one), each result validated, imported by
               ./rtconvert and rendered: each image within 0.5% of pixels (some channel off by
               more than 1) of the original scene's. Assignment 3's scenes at 4 samples a pixel.
@@ -28,9 +29,11 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 NPM = os.path.join(REPO, "build", "npm")
 OUT = os.path.join(REPO, "build", "gltf", "tools")
 # Each variant: glTF Transform's command and its options. optimize's simplify step removes
-# vertices (docs/gltf.md), so optimize is run without it too.
+# vertices, and its join makes one mesh of small and large ones, which its quantisation then
+# quantises in the large one's extent (docs/gltf.md): optimize is run without them too.
 VARIANTS = {"quantize": ["quantize"], "meshopt": ["meshopt"], "draco": ["draco"], "optimize": ["optimize"],
-            "optimize-nosimplify": ["optimize", "--simplify", "false"]}
+            "optimize-nosimplify": ["optimize", "--simplify", "false"],
+            "optimize-nosimplify-nojoin": ["optimize", "--simplify", "false", "--join", "false"]}
 # The scenes make check-gltf puts through the pipelines: flat and instanced meshes, glass and
 # spheres, transformations, metals, an XML scene; cornellbox's 5 materials, which optimize's
 # palette step merges, and mirror_room's planes, which its join merges (docs/gltf.md).
