@@ -11,7 +11,9 @@ namespace {
 
 using V3 = std::array<double, 3>;
 
-V3 vertex(const GltfTriangles& g, size_t i) { return {g.positions[3 * i], g.positions[3 * i + 1], g.positions[3 * i + 2]}; }
+V3 vertex(const GltfTriangles& g, size_t i) {
+    return {g.positions[3 * i], g.positions[3 * i + 1], g.positions[3 * i + 2]};
+}
 
 // Whether the centre of every triangle of `g` is within 30% of the radius of the surface
 // `radius_at` measures (1 on it, 0 at its centre): a tessellation's triangles are small
