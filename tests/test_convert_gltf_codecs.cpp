@@ -196,12 +196,14 @@ void check_palette_scene(const rt::SceneDesc& original, const Imported& back) {
 // optimize: its palette merges the materials into one, its join the spheres into one mesh
 // and the plane into the mesh of its material, its prune drops the area light's node.
 // palette_optimize_nojoin.glb: the same with --join false, where spheres of one radius share
-// their POSITION but not their texture coordinates (their texels).
+// their POSITION but not their texture coordinates (their texels). tests/gltf/palette_optimize/:
+// optimize's .gltf, its palette a PNG file beside it.
 TEST(GltfPipelineFiles, OptimizesPaletteAndJoinComeBackAsTheScenesMaterialsSpheresAndPlane) {
     const std::string dir = seeds();
     ASSERT_FALSE(dir.empty()) << "tests/fuzz/seeds/gltf not found above " << fs::current_path();
     const rt::SceneDesc original = rt::load_scene(dir + "/../../../gltf/palette_scene.json");
-    for (const char* file : {"palette_optimize.glb", "palette_optimize_nojoin.glb"}) {
+    for (const char* file : {"palette_optimize.glb", "palette_optimize_nojoin.glb",
+                             "../../../gltf/palette_optimize/palette_optimize.gltf"}) {
         SCOPED_TRACE(file);
         TempDir tmp;
         check_palette_scene(original, import(tmp, dir + "/" + file));

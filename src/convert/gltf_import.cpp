@@ -902,7 +902,7 @@ private:
     SceneImport& out_;
 
     GltfPrimitives primitives_;
-    GltfPalettes palettes_{model_, primitives_};
+    GltfPalettes palettes_{model_, primitives_, path_, out_.warnings};
     std::map<const GltfTriangles*, FirstUse> first_use_;
     // A primitive's triangles drawn with each material (one, or a palette's: gltf_palette.h),
     // per primitive (mesh, index); triangles made here, at stable addresses.

@@ -1,10 +1,15 @@
 // Palette textures as a material per triangle (gltf_palette.h, docs/gltf.md).
 #include "gltf_palette.h"
 
+#include <cctype>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include <stb/stb_image.h>
+
+#include "rt/core/error.h"
+#include "rt/io/files.h"
 
 namespace rt {
 #ifndef RT_NO_GLTF
@@ -25,6 +30,21 @@ namespace {
 // allocate gigabytes.
 constexpr int kMaxPalettePixels = 1 << 22;
 
+// A URI's %XX escapes decoded (glTF writers escape spaces and the like in file names).
+std::string percent_decoded(const std::string& uri) {
+    std::string out;
+    for (size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
+            std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
+            out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+            i += 2;
+        } else {
+            out += uri[i];
+        }
+    }
+    return out;
+}
+
 }  // namespace
 
 const GltfPalettes::Decoded& GltfPalettes::image_of(int texture) {
@@ -36,6 +56,7 @@ const GltfPalettes::Decoded& GltfPalettes::image_of(int texture) {
     const tinygltf::Image& image = model_.images[size_t(source)];
     const unsigned char* bytes = nullptr;
     size_t size = 0;
+    std::string file;
     if (image.bufferView >= 0) {  // in a buffer: every range checked
         if (size_t(image.bufferView) >= model_.bufferViews.size()) return d;
         const tinygltf::BufferView& bv = model_.bufferViews[size_t(image.bufferView)];
@@ -44,9 +65,18 @@ const GltfPalettes::Decoded& GltfPalettes::image_of(int texture) {
         if (bv.byteOffset > buf.size() || bv.byteLength > buf.size() - bv.byteOffset) return d;
         bytes = buf.data() + bv.byteOffset;
         size = bv.byteLength;
-    } else {  // a data URI, its bytes kept by the parse (gltf_io.cpp)
+    } else if (!image.image.empty()) {  // a data URI, its bytes kept by the parse (gltf_io.cpp)
         bytes = image.image.data();
         size = image.image.size();
+    } else if (!image.uri.empty()) {  // a file beside a .gltf, named relative to it
+        try {
+            file = read_text_file(dirname_of(path_) + percent_decoded(image.uri));
+        } catch (const InputError& e) {
+            warnings_.push_back(path_ + ": /images/" + std::to_string(source) + ": " + e.what());
+            return d;
+        }
+        bytes = reinterpret_cast<const unsigned char*>(file.data());
+        size = file.size();
     }
     if (size == 0 || size > size_t(std::numeric_limits<int>::max())) return d;
     int w = 0, h = 0, channels = 0;

@@ -37,13 +37,16 @@ struct PaletteTexel {
 
 class GltfPalettes {
 public:
-    GltfPalettes(const tinygltf::Model& model, const GltfPrimitives& primitives)
-        : model_(model), primitives_(primitives) {}
+    // `path`: the glTF file's, whose folder holds the images a .gltf names by uri; a
+    // warning for an image that cannot be read goes to `warnings`.
+    GltfPalettes(const tinygltf::Model& model, const GltfPrimitives& primitives, const std::string& path,
+                 std::vector<std::string>& warnings)
+        : model_(model), primitives_(primitives), path_(path), warnings_(warnings) {}
 
     // The texels of each triangle of primitive p of mesh m, when its material's base colour
     // or metallic-roughness texture is a palette for it: every triangle's corners in one
     // texel of each (nearest sampling, repeat), no KHR_texture_transform. Empty otherwise
-    // (no such texture, an image that is not in the file or does not decode, corners that
+    // (no such texture, an image that cannot be read or does not decode, corners that
     // span texels: a texture, whose factors the import uses, with a warning). Throws
     // rt::InputError naming the accessor for a malformed TEXCOORD.
     std::vector<PaletteTexel> triangle_texels(int m, int p);
@@ -57,6 +60,8 @@ private:
 
     const tinygltf::Model& model_;
     const GltfPrimitives& primitives_;
+    const std::string& path_;
+    std::vector<std::string>& warnings_;
     std::map<int, Decoded> decoded_;  // texture index -> its image, decoded once
 };
 
